@@ -1,0 +1,77 @@
+/// \file accel.h
+/// \brief Ray-intersection acceleration structure interface (closest hit and any hit).
+#pragma once
+
+#include <nori/frame.h>
+#include <nori/mesh.h>
+#include <utility>
+#include <vector>
+
+namespace nori {
+
+/// \brief The raw result of a closest-hit query: parameter, barycentrics and global triangle id.
+struct Hit {
+    float t = Infinity;
+    float u = 0.0f, v = 0.0f;  ///< barycentrics of corners 1 and 2
+    uint32_t prim = ~0u;       ///< index into the accel's global triangle numbering
+};
+
+/// \brief Everything an integrator needs to know about a surface hit.
+struct Intersection {
+    Point3f p;
+    float t = Infinity;
+    Point2f uv;          ///< texture coordinates (barycentrics if the mesh has none)
+    Frame shFrame;       ///< shading frame (interpolated normal if the mesh has normals)
+    Frame geoFrame;      ///< geometric frame
+    const Mesh *mesh = nullptr;
+    uint32_t triIndex = 0;  ///< triangle index within \p mesh
+};
+
+/// \brief One named statistic of a built accelerator (printed by --stats, written as JSON).
+struct AccelStat {
+    std::string name;
+    double value;
+    bool integral;  ///< print without decimals
+};
+
+/// \brief Base class of accelerators. Triangles of all meshes are numbered globally in
+/// the order the meshes were added.
+class Accel : public NoriObject {
+public:
+    /// \brief Register a mesh (not owned); must be called before build().
+    void addMesh(const Mesh *mesh);
+    /// \brief Build the structure over all registered meshes and time it.
+    void build();
+    /// \brief Nori's query: closest hit (fills \p its) or, with \p shadowRay, any hit.
+    bool rayIntersect(const Ray3f &ray, Intersection &its, bool shadowRay) const;
+
+    /// \brief Closest hit in [ray.mint, ray.maxt]; on success fills \p hit.
+    virtual bool intersect(const Ray3f &ray, Hit &hit) const = 0;
+    /// \brief Any hit in [ray.mint, ray.maxt]: stops at the first one found.
+    virtual bool occluded(const Ray3f &ray) const = 0;
+    /// \brief Build statistics; the base adds build_ms and triangles.
+    virtual std::vector<AccelStat> statistics() const;
+
+    /// \brief Fill the surface data of \p its from a raw hit.
+    void completeIntersection(const Ray3f &ray, const Hit &hit, Intersection &its) const;
+    /// \brief Mesh and local triangle index of global triangle \p prim.
+    std::pair<const Mesh *, uint32_t> locate(uint32_t prim) const;
+
+    uint32_t triangleCount() const { return m_offsets.empty() ? 0 : m_offsets.back(); }
+    const BoundingBox3f &bbox() const { return m_bbox; }
+    const std::vector<const Mesh *> &meshes() const { return m_meshes; }
+    double buildMilliseconds() const { return m_buildMs; }
+
+    EClassType getClassType() const override { return EAccel; }
+
+protected:
+    /// \brief Build the structure; meshes, offsets and bbox are ready.
+    virtual void buildImpl() = 0;
+
+    std::vector<const Mesh *> m_meshes;
+    std::vector<uint32_t> m_offsets{0};  ///< prefix sums of triangle counts
+    BoundingBox3f m_bbox;
+    double m_buildMs = 0.0;
+};
+
+} // namespace nori

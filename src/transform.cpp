@@ -1,0 +1,63 @@
+#include <nori/transform.h>
+#include <Eigen/LU>
+#include <sstream>
+
+namespace nori {
+
+Transform::Transform(const Matrix4f &matrix) : m_matrix(matrix) {
+    Eigen::FullPivLU<Eigen::Matrix4d> lu(matrix.cast<double>());
+    if (!matrix.allFinite() || !lu.isInvertible())
+        throw NoriException("transform matrix is singular or not finite");
+    m_inverse = lu.inverse().cast<float>();
+}
+
+Transform Transform::translate(const Vector3f &delta) {
+    Matrix4f m = Matrix4f::Identity();
+    m.topRightCorner<3, 1>() = delta;
+    Matrix4f inv = Matrix4f::Identity();
+    inv.topRightCorner<3, 1>() = -delta;
+    return Transform(m, inv);
+}
+
+Transform Transform::scale(const Vector3f &factors) {
+    if ((factors.array() == 0.0f).any() || !factors.allFinite())
+        throw NoriException("scale factors must be finite and non-zero");
+    Matrix4f m = Matrix4f::Identity(), inv = Matrix4f::Identity();
+    for (int i = 0; i < 3; ++i) {
+        m(i, i) = factors[i];
+        inv(i, i) = 1.0f / factors[i];
+    }
+    return Transform(m, inv);
+}
+
+Transform Transform::rotate(const Vector3f &axis, float angleDegrees) {
+    if (!axis.allFinite() || axis.norm() == 0.0f || !std::isfinite(angleDegrees))
+        throw NoriException("rotation needs a finite, non-zero axis and a finite angle");
+    Matrix4f m = Matrix4f::Identity();
+    m.topLeftCorner<3, 3>() = Eigen::AngleAxisf(degToRad(angleDegrees), axis.normalized()).toRotationMatrix();
+    Matrix4f inv = Matrix4f::Identity();
+    inv.topLeftCorner<3, 3>() = m.topLeftCorner<3, 3>().transpose();
+    return Transform(m, inv);
+}
+
+Transform Transform::lookAt(const Point3f &origin, const Point3f &target, const Vector3f &up) {
+    Vector3f dir = target - origin;
+    if (!origin.allFinite() || !target.allFinite() || !up.allFinite() || dir.norm() == 0.0f)
+        throw NoriException("lookat needs distinct, finite origin and target");
+    dir.normalize();
+    Vector3f left = up.normalized().cross(dir);
+    if (!(left.norm() > 1e-6f)) throw NoriException("lookat 'up' vector is parallel to the view direction");
+    left.normalize();
+    Vector3f newUp = dir.cross(left);
+    Matrix4f m;
+    m << left, newUp, dir, origin, 0, 0, 0, 1;
+    return Transform(m);
+}
+
+std::string Transform::toString() const {
+    std::ostringstream os;
+    os << m_matrix.format(Eigen::IOFormat(4, 0, ", ", ";\n", "", "", "[", "]"));
+    return os.str();
+}
+
+} // namespace nori
