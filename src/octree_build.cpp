@@ -14,6 +14,9 @@ namespace {
 /// Subtrees with more references than this are built as parallel tasks.
 constexpr size_t kParallelRefs = 4096;
 
+/// The leaves of the whole tree hold at most this many references per triangle (see split()).
+constexpr double kRefBudget = 8.0;
+
 /// Read-only inputs of the build.
 struct BuildInput {
     const std::vector<std::array<Point3f, 3>> &vertices;  ///< corners of every global triangle
@@ -47,8 +50,14 @@ BoundingBox3f childCell(const BoundingBox3f &cell, int c) {
 
 /// Split \p refs (the triangles touching \p cell, a node at \p depth) into eight children and
 /// recurse. Returns null when the split makes no progress; the caller then keeps a leaf.
+///
+/// Reference budget: the node may hold at most \p budget references in the leaves below it. A
+/// split whose children hold more is refused, and each child inherits the share of the budget
+/// proportional to its references (at least its own count). The root gets kRefBudget times the
+/// triangle count, so no input (needles spanning the box, huge triangles) can make the tree
+/// hold more than kRefBudget references per triangle.
 std::unique_ptr<TempNode> split(const BuildInput &in, const BoundingBox3f &cell, const std::vector<uint32_t> &refs,
-                                int depth) {
+                                int depth, double budget) {
     const size_t n = refs.size();
     const Point3f mid = cell.center();
     BoundingBox3f cells[8];
@@ -92,7 +101,7 @@ std::unique_ptr<TempNode> split(const BuildInput &in, const BoundingBox3f &cell,
     // No progress: the triangles are mostly larger than the children (each lands in more than
     // half of them), or the fullest child keeps every triangle while many straddle (a vertex
     // fan, stacked identical triangles). Splitting again would only multiply references.
-    if (sum > 4 * n || (largest == n && sum >= 2 * n)) return nullptr;
+    if (sum > 4 * n || (largest == n && sum >= 2 * n) || double(sum) > budget) return nullptr;
 
     auto node = std::make_unique<TempNode>();
     for (int c = 0; c < 8; ++c) node->refs[c].reserve(counts[c]);
@@ -108,7 +117,8 @@ std::unique_ptr<TempNode> split(const BuildInput &in, const BoundingBox3f &cell,
     auto buildChild = [&](int c) {
         std::vector<uint32_t> &list = node->refs[c];
         if (list.size() < in.leafSize || depth + 1 >= in.maxDepth) return;
-        std::unique_ptr<TempNode> sub = split(in, cells[c], list, depth + 1);
+        double share = budget * double(list.size()) / double(sum);
+        std::unique_ptr<TempNode> sub = split(in, cells[c], list, depth + 1, share);
         if (!sub) return;
         node->inner[c] = std::move(sub);
         std::vector<uint32_t>().swap(list);
@@ -210,7 +220,7 @@ void OctreeAccel::buildImpl() {
 
     BuildInput in{vertices, bounds, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact};
     std::unique_ptr<TempNode> root;
-    if (all.size() >= size_t(m_leafSize) && m_maxDepth > 0) root = split(in, cell, all, 0);
+    if (all.size() >= size_t(m_leafSize) && m_maxDepth > 0) root = split(in, cell, all, 0, kRefBudget * double(all.size()));
     bool rootIsLeaf = !root;
     if (rootIsLeaf) {
         // The root node then holds a single leaf child with every triangle.

@@ -134,19 +134,18 @@ inline void loadCorner(const float *rows, uint32_t n, uint32_t i, int first, flo
     out[1] = rows[(first + 1) * n + i];
     out[2] = rows[(first + 2) * n + i];
 }
-} // namespace
 
-bool TriangleStore::intersect(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const {
-    const float *rows = m_data.data() + size_t(9) * begin;
-    const uint32_t *prims = m_prims.data() + begin;
+/// Scalar loop over triangles [from, n) of a leaf; the lexicographic minimum (t, prim) wins.
+bool intersectScalar(Intersector kind, const TriangleRay &ray, const float *rows, const uint32_t *prims, uint32_t from,
+                     uint32_t n, Hit &best) {
     bool found = false;
-    for (uint32_t i = 0; i < n; ++i) {
+    for (uint32_t i = from; i < n; ++i) {
         float a[3], b[3], c[3], t, u, v;
         loadCorner(rows, n, i, 0, a);
         loadCorner(rows, n, i, 3, b);
         loadCorner(rows, n, i, 6, c);
-        bool hit = m_kind == Intersector::MT ? intersectMT(ray, a, b, c, best.t, t, u, v)
-                                             : intersectWatertight(ray, a, b, c, best.t, t, u, v);
+        bool hit = kind == Intersector::MT ? intersectMT(ray, a, b, c, best.t, t, u, v)
+                                           : intersectWatertight(ray, a, b, c, best.t, t, u, v);
         if (hit && (t < best.t || prims[i] < best.prim)) {
             best = Hit{t, u, v, prims[i]};
             found = true;
@@ -155,8 +154,151 @@ bool TriangleStore::intersect(const TriangleRay &ray, uint32_t begin, uint32_t n
     return found;
 }
 
+#if NORI_TRIANGLE_AVX512
+/// Sixteen triangles per step. Every lane performs exactly the scalar kernels' operations in
+/// the same order (no FMA in this file), so the answers are bit-identical to the scalar ones.
+struct Lanes {
+    __m512 t, u, v;
+    __mmask16 valid;  ///< lanes with a hit in [mint, maxt]
+    __mmask16 redo;   ///< watertight lanes that need the double-precision edge functions
+};
+
+inline __m512 load(const float *rows, uint32_t n, int row, uint32_t i, __mmask16 m) {
+    return _mm512_maskz_loadu_ps(m, rows + size_t(row) * n + i);
+}
+
+inline Lanes mt16(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, __mmask16 m, float maxt) {
+    const __m512 dx = _mm512_set1_ps(r.d[0]), dy = _mm512_set1_ps(r.d[1]), dz = _mm512_set1_ps(r.d[2]);
+    __m512 e1x = load(rows, n, 3, i, m), e1y = load(rows, n, 4, i, m), e1z = load(rows, n, 5, i, m);
+    __m512 e2x = load(rows, n, 6, i, m), e2y = load(rows, n, 7, i, m), e2z = load(rows, n, 8, i, m);
+    __m512 px = _mm512_sub_ps(_mm512_mul_ps(dy, e2z), _mm512_mul_ps(dz, e2y));
+    __m512 py = _mm512_sub_ps(_mm512_mul_ps(dz, e2x), _mm512_mul_ps(dx, e2z));
+    __m512 pz = _mm512_sub_ps(_mm512_mul_ps(dx, e2y), _mm512_mul_ps(dy, e2x));
+    __m512 det = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(e1x, px), _mm512_mul_ps(e1y, py)), _mm512_mul_ps(e1z, pz));
+    const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
+    __mmask16 valid = _mm512_mask_cmp_ps_mask(m, det, zero, _CMP_NEQ_UQ);
+    __m512 invDet = _mm512_div_ps(one, det);
+    __m512 tx = _mm512_sub_ps(_mm512_set1_ps(r.o[0]), load(rows, n, 0, i, m));
+    __m512 ty = _mm512_sub_ps(_mm512_set1_ps(r.o[1]), load(rows, n, 1, i, m));
+    __m512 tz = _mm512_sub_ps(_mm512_set1_ps(r.o[2]), load(rows, n, 2, i, m));
+    __m512 u = _mm512_mul_ps(
+        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(tx, px), _mm512_mul_ps(ty, py)), _mm512_mul_ps(tz, pz)), invDet);
+    // Scalar: reject if (u < 0 || u > 1); ordered compares keep NaN lanes, as the scalar code does.
+    valid &= ~(_mm512_cmp_ps_mask(u, zero, _CMP_LT_OQ) | _mm512_cmp_ps_mask(u, one, _CMP_GT_OQ));
+    __m512 qx = _mm512_sub_ps(_mm512_mul_ps(ty, e1z), _mm512_mul_ps(tz, e1y));
+    __m512 qy = _mm512_sub_ps(_mm512_mul_ps(tz, e1x), _mm512_mul_ps(tx, e1z));
+    __m512 qz = _mm512_sub_ps(_mm512_mul_ps(tx, e1y), _mm512_mul_ps(ty, e1x));
+    __m512 v = _mm512_mul_ps(
+        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, qx), _mm512_mul_ps(dy, qy)), _mm512_mul_ps(dz, qz)), invDet);
+    valid &= ~(_mm512_cmp_ps_mask(v, zero, _CMP_LT_OQ) | _mm512_cmp_ps_mask(_mm512_add_ps(u, v), one, _CMP_GT_OQ));
+    __m512 t = _mm512_mul_ps(
+        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(e2x, qx), _mm512_mul_ps(e2y, qy)), _mm512_mul_ps(e2z, qz)), invDet);
+    valid &= _mm512_cmp_ps_mask(t, _mm512_set1_ps(r.mint), _CMP_GE_OQ) &
+             _mm512_cmp_ps_mask(t, _mm512_set1_ps(maxt), _CMP_LE_OQ);
+    return {t, u, v, valid, 0};
+}
+
+inline Lanes watertight16(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, __mmask16 m, float maxt) {
+    const __m512 ox = _mm512_set1_ps(r.o[r.kx]), oy = _mm512_set1_ps(r.o[r.ky]), oz = _mm512_set1_ps(r.o[r.kz]);
+    const __m512 sx = _mm512_set1_ps(r.sx), sy = _mm512_set1_ps(r.sy), sz = _mm512_set1_ps(r.sz);
+    __m512 az0 = _mm512_sub_ps(load(rows, n, r.kz, i, m), oz);
+    __m512 bz0 = _mm512_sub_ps(load(rows, n, 3 + r.kz, i, m), oz);
+    __m512 cz0 = _mm512_sub_ps(load(rows, n, 6 + r.kz, i, m), oz);
+    __m512 ax = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, r.kx, i, m), ox), _mm512_mul_ps(sx, az0));
+    __m512 ay = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, r.ky, i, m), oy), _mm512_mul_ps(sy, az0));
+    __m512 bx = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, 3 + r.kx, i, m), ox), _mm512_mul_ps(sx, bz0));
+    __m512 by = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, 3 + r.ky, i, m), oy), _mm512_mul_ps(sy, bz0));
+    __m512 cx = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, 6 + r.kx, i, m), ox), _mm512_mul_ps(sx, cz0));
+    __m512 cy = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, 6 + r.ky, i, m), oy), _mm512_mul_ps(sy, cz0));
+    __m512 U = _mm512_sub_ps(_mm512_mul_ps(cx, by), _mm512_mul_ps(cy, bx));
+    __m512 V = _mm512_sub_ps(_mm512_mul_ps(ax, cy), _mm512_mul_ps(ay, cx));
+    __m512 W = _mm512_sub_ps(_mm512_mul_ps(bx, ay), _mm512_mul_ps(by, ax));
+    const __m512 zero = _mm512_setzero_ps();
+    __mmask16 redo = _mm512_mask_cmp_ps_mask(m, U, zero, _CMP_EQ_OQ) | _mm512_mask_cmp_ps_mask(m, V, zero, _CMP_EQ_OQ) |
+                     _mm512_mask_cmp_ps_mask(m, W, zero, _CMP_EQ_OQ);
+    __mmask16 neg = _mm512_cmp_ps_mask(U, zero, _CMP_LT_OQ) | _mm512_cmp_ps_mask(V, zero, _CMP_LT_OQ) |
+                    _mm512_cmp_ps_mask(W, zero, _CMP_LT_OQ);
+    __mmask16 pos = _mm512_cmp_ps_mask(U, zero, _CMP_GT_OQ) | _mm512_cmp_ps_mask(V, zero, _CMP_GT_OQ) |
+                    _mm512_cmp_ps_mask(W, zero, _CMP_GT_OQ);
+    __mmask16 valid = m & ~redo & ~(neg & pos);
+    __m512 det = _mm512_add_ps(_mm512_add_ps(U, V), W);
+    valid &= _mm512_cmp_ps_mask(det, zero, _CMP_NEQ_UQ);
+    __m512 T = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(U, _mm512_mul_ps(sz, az0)), _mm512_mul_ps(V, _mm512_mul_ps(sz, bz0))),
+                             _mm512_mul_ps(W, _mm512_mul_ps(sz, cz0)));
+    __m512 invDet = _mm512_div_ps(_mm512_set1_ps(1.0f), det);
+    __m512 t = _mm512_mul_ps(T, invDet);
+    valid &= _mm512_cmp_ps_mask(t, _mm512_set1_ps(r.mint), _CMP_GE_OQ) &
+             _mm512_cmp_ps_mask(t, _mm512_set1_ps(maxt), _CMP_LE_OQ);
+    return {t, _mm512_mul_ps(V, invDet), _mm512_mul_ps(W, invDet), valid, redo};
+}
+
+inline Lanes test16(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, __mmask16 m,
+                    float maxt) {
+    return kind == Intersector::MT ? mt16(r, rows, n, i, m, maxt) : watertight16(r, rows, n, i, m, maxt);
+}
+#endif
+} // namespace
+
+bool TriangleStore::intersect(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const {
+    const float *rows = m_data.data() + size_t(9) * begin;
+    const uint32_t *prims = m_prims.data() + begin;
+#if NORI_TRIANGLE_AVX512
+    bool found = false;
+    for (uint32_t i = 0; i < n; i += 16) {
+        __mmask16 m = n - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - i)) - 1);
+        Lanes l = test16(m_kind, ray, rows, n, i, m, best.t);
+        // Rare watertight lanes with an exactly zero edge function: the scalar kernel
+        // (double-precision fallback) decides them one by one.
+        for (unsigned redo = l.redo; redo; redo &= redo - 1) {
+            uint32_t k = i + uint32_t(__builtin_ctz(redo));
+            float a[3], b[3], c[3], t, u, v;
+            loadCorner(rows, n, k, 0, a);
+            loadCorner(rows, n, k, 3, b);
+            loadCorner(rows, n, k, 6, c);
+            if (intersectWatertight(ray, a, b, c, best.t, t, u, v) && (t < best.t || prims[k] < best.prim)) {
+                best = Hit{t, u, v, prims[k]};
+                found = true;
+            }
+        }
+        if (!l.valid) continue;
+        // Lexicographic minimum of (t, prim) over the hit lanes, as the scalar loop finds it.
+        float tmin = _mm512_mask_reduce_min_ps(l.valid, l.t);
+        __mmask16 nearest = _mm512_mask_cmp_ps_mask(l.valid, l.t, _mm512_set1_ps(tmin), _CMP_EQ_OQ);
+        __m512i ids = _mm512_maskz_loadu_epi32(m, prims + i);
+        uint32_t prim = _mm512_mask_reduce_min_epu32(nearest, ids);
+        if (!(tmin < best.t || (tmin == best.t && prim < best.prim))) continue;
+        __mmask16 lane = _mm512_mask_cmp_epu32_mask(nearest, ids, _mm512_set1_epi32(int(prim)), _MM_CMPINT_EQ);
+        int k = __builtin_ctz(lane);
+        alignas(64) float us[16], vs[16];
+        _mm512_store_ps(us, l.u);
+        _mm512_store_ps(vs, l.v);
+        best = Hit{tmin, us[k], vs[k], prim};
+        found = true;
+    }
+    return found;
+#else
+    return intersectScalar(m_kind, ray, rows, prims, 0, n, best);
+#endif
+}
+
 bool TriangleStore::occluded(const TriangleRay &ray, uint32_t begin, uint32_t n, float maxt) const {
     const float *rows = m_data.data() + size_t(9) * begin;
+#if NORI_TRIANGLE_AVX512
+    for (uint32_t i = 0; i < n; i += 16) {
+        __mmask16 m = n - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - i)) - 1);
+        Lanes l = test16(m_kind, ray, rows, n, i, m, maxt);
+        if (l.valid) return true;
+        for (unsigned redo = l.redo; redo; redo &= redo - 1) {
+            uint32_t k = i + uint32_t(__builtin_ctz(redo));
+            float a[3], b[3], c[3], t, u, v;
+            loadCorner(rows, n, k, 0, a);
+            loadCorner(rows, n, k, 3, b);
+            loadCorner(rows, n, k, 6, c);
+            if (intersectWatertight(ray, a, b, c, maxt, t, u, v)) return true;
+        }
+    }
+    return false;
+#else
     for (uint32_t i = 0; i < n; ++i) {
         float a[3], b[3], c[3], t, u, v;
         loadCorner(rows, n, i, 0, a);
@@ -167,6 +309,11 @@ bool TriangleStore::occluded(const TriangleRay &ray, uint32_t begin, uint32_t n,
         if (hit) return true;
     }
     return false;
+#endif
+}
+
+bool TriangleStore::intersectReference(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const {
+    return intersectScalar(m_kind, ray, m_data.data() + size_t(9) * begin, m_prims.data() + begin, 0, n, best);
 }
 
 } // namespace nori

@@ -57,6 +57,8 @@ public:
     /// \brief Closest hit among the leaf's triangles with t in [ray.mint, best.t]; a hit at
     /// exactly best.t wins only with a lower triangle id (deterministic ties). Updates \p best.
     bool intersect(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const;
+    /// \brief The scalar kernels on the same leaf (for tests: intersect() must match it bit for bit).
+    bool intersectReference(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const;
     /// \brief Is any triangle of the leaf hit with t in [ray.mint, maxt]?
     bool occluded(const TriangleRay &ray, uint32_t begin, uint32_t n, float maxt) const;
 

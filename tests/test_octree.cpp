@@ -1,0 +1,357 @@
+// Octree versus brute force on generated meshes: an independent check of the build and the
+// traversals (both accelerators run the same TriangleStore kernels, so every answer must be
+// bit-identical: hit/miss, triangle, t, u, v), plus property handling, statistics and bounded
+// builds on pathological inputs.
+#include <gtest/gtest.h>
+#include <nori/octree.h>
+#include <ray_sets.h>
+#include "test_geometry.h"
+#include <tbb/parallel_for.h>
+#include <atomic>
+#include <pcg_random.hpp>
+
+using namespace nori;
+
+namespace {
+
+float uniform(pcg32 &rng) { return float(rng() >> 8) * 0x1p-24f; }
+
+/// Subdivided icosahedron on the unit sphere (closed, shared edges everywhere).
+MeshData icosphere(int levels) {
+    const float p = 1.6180339887f;
+    MeshData m;
+    m.positions = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0}, {0, -1, p}, {0, 1, p},
+                   {0, -1, -p}, {0, 1, -p}, {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
+    m.faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+               {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+               {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    for (auto &v : m.positions) v.normalize();
+    for (int l = 0; l < levels; ++l) {
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+        auto midpoint = [&](uint32_t a, uint32_t b) {
+            auto key = std::minmax(a, b);
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
+            return mid[key] = uint32_t(m.positions.size() - 1);
+        };
+        std::vector<std::array<uint32_t, 3>> faces;
+        for (auto f : m.faces) {
+            uint32_t a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), c = midpoint(f[2], f[0]);
+            faces.push_back({f[0], a, c});
+            faces.push_back({f[1], b, a});
+            faces.push_back({f[2], c, b});
+            faces.push_back({a, b, c});
+        }
+        m.faces = faces;
+    }
+    return m;
+}
+
+/// Random triangles of mixed sizes in [0,1]^3, with exact duplicates and back-to-back copies.
+MeshData soup(int count, uint64_t seed) {
+    pcg32 rng(seed);
+    MeshData m;
+    for (int i = 0; i < count; ++i) {
+        Point3f c(uniform(rng), uniform(rng), uniform(rng));
+        float size = i % 10 == 0 ? 0.5f : 0.03f;
+        for (int k = 0; k < 3; ++k)
+            m.positions.push_back(c + size * Vector3f(uniform(rng) - 0.5f, uniform(rng) - 0.5f, uniform(rng) - 0.5f));
+        uint32_t b = uint32_t(3 * i);
+        m.faces.push_back({b, b + 1, b + 2});
+        if (i % 7 == 0) m.faces.push_back({b, b + 1, b + 2});  // duplicate
+        if (i % 5 == 0) m.faces.push_back({b, b + 2, b + 1});  // back to back
+    }
+    return m;
+}
+
+/// A square grid of triangles in the plane z = \p z over [0,1]^2 (lies on octree split planes).
+MeshData grid(int n, float z) {
+    MeshData m;
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x) m.positions.emplace_back(float(x) / n, float(y) / n, z);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            uint32_t a = uint32_t(y * (n + 1) + x), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+            m.faces.push_back({a, b, d});
+            m.faces.push_back({a, d, c});
+        }
+    return m;
+}
+
+/// \p n triangles sharing the vertex (0.3, 0.3, 0.3), fanning out to a circle.
+MeshData fan(int n) {
+    MeshData m;
+    m.positions.emplace_back(0.3f, 0.3f, 0.3f);
+    for (int i = 0; i <= n; ++i) {
+        float a = 2.0f * Pi * float(i) / float(n);
+        m.positions.emplace_back(0.3f + std::cos(a), 0.3f + std::sin(a), 0.3f + 0.2f * std::sin(3.0f * a));
+    }
+    for (int i = 0; i < n; ++i) m.faces.push_back({0, uint32_t(i + 1), uint32_t(i + 2)});
+    return m;
+}
+
+/// \p n copies of one triangle.
+MeshData identical(int n) {
+    MeshData m;
+    m.positions = {{0.1f, 0.2f, 0.3f}, {0.4f, 0.25f, 0.35f}, {0.2f, 0.5f, 0.1f}};
+    m.faces.assign(size_t(n), {0, 1, 2});
+    return m;
+}
+
+/// \p n thin triangles each spanning the unit cube between random opposite faces.
+MeshData needles(int n, uint64_t seed) {
+    pcg32 rng(seed);
+    MeshData m;
+    for (int i = 0; i < n; ++i) {
+        Point3f a(uniform(rng), uniform(rng), 0.0f), b(uniform(rng), uniform(rng), 1.0f);
+        uint32_t base = uint32_t(m.positions.size());
+        m.positions.push_back(a);
+        m.positions.push_back(b);
+        m.positions.push_back(b + Vector3f(1e-4f, 0.0f, 0.0f));
+        m.faces.push_back({base, base + 1, base + 2});
+    }
+    return m;
+}
+
+std::unique_ptr<Accel> makeAccel(const std::string &type, const PropertyList &props, const std::vector<const Mesh *> &meshes) {
+    std::unique_ptr<NoriObject> object = NoriObjectFactory::createInstance(NoriObject::EAccel, type, props);
+    std::unique_ptr<Accel> accel(static_cast<Accel *>(object.release()));
+    for (const Mesh *m : meshes) accel->addMesh(m);
+    accel->build();
+    return accel;
+}
+
+/// Random rays through the box, and rays aimed exactly at vertices and edge midpoints.
+std::vector<Ray3f> testRays(const std::vector<const Mesh *> &meshes, size_t count, uint64_t seed) {
+    BoundingBox3f box;
+    for (const Mesh *m : meshes) box.expandBy(m->bbox());
+    std::vector<Ray3f> rays = randomBoxRays(box, count, seed);
+    pcg32 rng(seed + 1);
+    Vector3f span = box.extents() * 3.0f;
+    for (size_t i = 0; i < count / 2; ++i) {
+        const Mesh *m = meshes[rng(uint32_t(meshes.size()))];
+        if (m->triangleCount() == 0) continue;
+        uint32_t f = rng(m->triangleCount());
+        Point3f target = rng(2) ? m->vertex(f, int(rng(3))) : 0.5f * (m->vertex(f, 0) + m->vertex(f, 1));
+        Point3f origin = box.center() + Vector3f(span.x() * (uniform(rng) - 0.5f), span.y() * (uniform(rng) - 0.5f),
+                                                 span.z() * (uniform(rng) - 0.5f));
+        if (origin != target) rays.emplace_back(origin, target - origin, 0.0f, i % 3 == 0 ? 1.0f : Infinity);
+    }
+    return rays;
+}
+
+/// The answers of one accelerator for a ray set.
+struct Answers {
+    std::vector<Hit> hits;
+    std::vector<uint8_t> found, occluded;
+};
+
+Answers answers(const Accel &accel, const std::vector<Ray3f> &rays) {
+    Answers a;
+    a.hits.resize(rays.size());
+    a.found.resize(rays.size());
+    a.occluded.resize(rays.size());
+    tbb::parallel_for(size_t(0), rays.size(), [&](size_t i) {
+        a.found[i] = accel.intersect(rays[i], a.hits[i]);
+        a.occluded[i] = accel.occluded(rays[i]);
+    });
+    return a;
+}
+
+/// Counts of rays whose answers differ in any bit (hit/miss, triangle, t, u, v, occlusion):
+/// `spurious` where the nearer of the two reported hits is not a robust hit (the ray does not
+/// cross that triangle at least eps = 2^-17 of the scale away from its boundary: a hit that
+/// Möller-Trumbore invents on a sliver triangle outside the triangle's bounds, which the octree's
+/// boxes rightly never visit), `other` for everything else.
+struct Differences {
+    size_t spurious = 0, other = 0;
+};
+
+Differences differences(const Answers &a, const Answers &b, const std::vector<Ray3f> &rays,
+                        const std::vector<const Mesh *> &meshes) {
+    std::vector<uint32_t> offsets{0};
+    for (const Mesh *m : meshes) offsets.push_back(offsets.back() + m->triangleCount());
+    Differences diff;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const Hit &x = a.hits[i], &y = b.hits[i];
+        bool same = a.found[i] == b.found[i] && a.occluded[i] == b.occluded[i] &&
+                    (!a.found[i] || (x.prim == y.prim && x.t == y.t && x.u == y.u && x.v == y.v));
+        if (same) continue;
+        bool robust = true;
+        if (a.found[i] || b.found[i]) {
+            const Hit &h = !b.found[i] || (a.found[i] && x.t < y.t) ? x : y;
+            size_t idx = size_t(std::upper_bound(offsets.begin(), offsets.end(), h.prim) - offsets.begin()) - 1;
+            const Mesh *m = meshes[idx];
+            uint32_t f = h.prim - offsets[idx];
+            V3d p0 = m->vertex(f, 0).cast<double>(), p1 = m->vertex(f, 1).cast<double>(),
+                p2 = m->vertex(f, 2).cast<double>();
+            V3d o = rays[i].o.cast<double>(), d = rays[i].d.cast<double>();
+            double size = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()}) / d.norm();
+            double t0 = std::max(double(rays[i].mint), h.t - 2 * size), t1 = std::min(double(rays[i].maxt), h.t + 2 * size);
+            double scale = std::max({o.cwiseAbs().maxCoeff(), (o + h.t * d).cwiseAbs().maxCoeff(), h.t * d.norm()});
+            robust = crossesInterior(o + t0 * d, o + t1 * d, p0, p1, p2, 0x1p-17 * scale);
+        }
+        (robust ? diff.other : diff.spurious)++;
+        if (robust && diff.other <= 3)
+            std::printf("[octree]   ray %zu: octree %d/%d t %.9g prim %u, brute %d/%d t %.9g prim %u\n", i,
+                        int(a.found[i]), int(a.occluded[i]), x.t, x.prim, int(b.found[i]), int(b.occluded[i]), y.t,
+                        y.prim);
+    }
+    return diff;
+}
+
+struct Scene {
+    std::string name;
+    std::vector<std::unique_ptr<Mesh>> meshes;
+    std::vector<const Mesh *> pointers() const {
+        std::vector<const Mesh *> p;
+        for (const auto &m : meshes) p.push_back(m.get());
+        return p;
+    }
+};
+
+std::vector<Scene> scenes() {
+    std::vector<Scene> s(5);
+    s[0].name = "icosphere";
+    s[0].meshes.push_back(std::make_unique<Mesh>(icosphere(4), "ico"));
+    s[1].name = "soup";
+    s[1].meshes.push_back(std::make_unique<Mesh>(soup(3000, 5), "soup"));
+    s[2].name = "grid_on_split_planes+sphere";
+    s[2].meshes.push_back(std::make_unique<Mesh>(grid(64, 0.5f), "grid"));
+    s[2].meshes.push_back(std::make_unique<Mesh>(icosphere(3), "ico"));
+    s[3].name = "fan+identical+needles";
+    s[3].meshes.push_back(std::make_unique<Mesh>(fan(2000), "fan"));
+    s[3].meshes.push_back(std::make_unique<Mesh>(identical(300), "same"));
+    s[3].meshes.push_back(std::make_unique<Mesh>(needles(300, 9), "needles"));
+    s[4].name = "empty_and_single";
+    s[4].meshes.push_back(std::make_unique<Mesh>(MeshData(), "empty"));
+    MeshData one;
+    one.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    one.faces = {{0, 1, 2}};
+    s[4].meshes.push_back(std::make_unique<Mesh>(one, "one"));
+    return s;
+}
+
+} // namespace
+
+TEST(Octree, MatchesBruteForceBitForBit) {
+    std::map<std::string, size_t> spurious;
+    for (const Scene &scene : scenes()) {
+        std::vector<const Mesh *> meshes = scene.pointers();
+        std::vector<Ray3f> rays = testRays(meshes, 12000, 21);
+        for (const char *isect : {"mt", "watertight"}) {
+            PropertyList bp;
+            bp.setString("intersector", isect);
+            Answers reference = answers(*makeAccel("brute", bp, meshes), rays);
+            for (const char *trav : {"simd", "sorted"})
+                for (const char *overlap : {"exact", "bbox"})
+                    for (auto [depth, leaf] : {std::pair{16, 8}, {3, 1}, {0, 8}, {24, 1}, {10, 32}}) {
+                        if (depth == 0 && scene.name != "empty_and_single") continue;  // brute force again
+                        PropertyList p;
+                        p.setString("intersector", isect);
+                        p.setString("traversal", trav);
+                        p.setString("overlap", overlap);
+                        p.setInteger("maxDepth", depth);
+                        p.setInteger("leafSize", leaf);
+                        auto octree = makeAccel("octree", p, meshes);
+                        Differences diff = differences(answers(*octree, rays), reference, rays, meshes);
+                        // Watertight: bit-identical. MT: only its spurious sliver hits may differ.
+                        EXPECT_EQ(diff.other, 0u) << scene.name << ": " << octree->toString();
+                        if (std::string(isect) == "watertight")
+                            EXPECT_EQ(diff.spurious, 0u) << scene.name << ": " << octree->toString();
+                        spurious[std::string(isect) + " on " + scene.name] += diff.spurious;
+                    }
+        }
+    }
+    for (const auto &[name, count] : spurious)
+        std::printf("[octree] spurious brute-force hits skipped by the octree (%s, all configurations): %zu\n",
+                    name.c_str(), count);
+}
+
+TEST(TriangleStore, SimdKernelsMatchScalarKernelsBitForBit) {
+    // One leaf over a soup with slivers, duplicates and a fan; rays at vertices and edges.
+    Mesh a(soup(500, 3), "soup"), b(fan(200), "fan"), c(needles(100, 4), "needles");
+    std::vector<const Mesh *> meshes{&a, &b, &c};
+    std::vector<std::array<Point3f, 3>> vertices;
+    for (const Mesh *m : meshes)
+        for (uint32_t f = 0; f < m->triangleCount(); ++f)
+            vertices.push_back({m->vertex(f, 0), m->vertex(f, 1), m->vertex(f, 2)});
+    std::vector<uint32_t> prims(vertices.size());
+    for (uint32_t i = 0; i < prims.size(); ++i) prims[i] = i;
+    std::vector<Ray3f> rays = testRays(meshes, 4000, 7);
+    for (Intersector kind : {Intersector::MT, Intersector::Watertight}) {
+        TriangleStore store;
+        store.reset(kind, prims.size());
+        // Leaves of every length 1..40 (full and partial 16-lane steps), then the rest.
+        uint32_t begin = 0;
+        std::vector<std::pair<uint32_t, uint32_t>> leaves;
+        for (uint32_t len = 1; begin + len <= prims.size() && len <= 40; begin += len, ++len) leaves.push_back({begin, len});
+        leaves.push_back({begin, uint32_t(prims.size()) - begin});
+        for (auto [first, len] : leaves) store.setLeaf(first, prims.data() + first, len, vertices);
+        size_t bad = 0, hits = 0;
+        for (const Ray3f &ray : rays) {
+            TriangleRay tr(ray);
+            for (auto [first, len] : leaves) {
+                Hit x, y;
+                x.t = y.t = ray.maxt;
+                bool hx = store.intersect(tr, first, len, x), hy = store.intersectReference(tr, first, len, y);
+                hits += hy;
+                if (hx != hy || x.t != y.t || x.prim != y.prim || x.u != y.u || x.v != y.v) ++bad;
+                if (store.occluded(tr, first, len, ray.maxt) != hy) ++bad;
+            }
+        }
+        EXPECT_GT(hits, 1000u);
+        EXPECT_EQ(bad, 0u) << intersectorName(kind);
+    }
+}
+
+TEST(Octree, RejectsUnknownPropertyValues) {
+    for (auto [name, value] : {std::pair{"traversal", "fast"}, {"intersector", "moeller"}, {"overlap", "sat"}}) {
+        PropertyList p;
+        p.setLocation("scene.xml:3");
+        p.setString(name, value);
+        try {
+            NoriObjectFactory::createInstance(NoriObject::EAccel, "octree", p);
+            ADD_FAILURE() << name << "=" << value << " was accepted";
+        } catch (const NoriException &e) {
+            EXPECT_NE(std::string(e.what()).find(value), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("allowed"), std::string::npos) << e.what();
+        }
+    }
+    PropertyList p;
+    p.setInteger("maxDepth", 100);
+    EXPECT_THROW(NoriObjectFactory::createInstance(NoriObject::EAccel, "octree", p), NoriException);
+}
+
+TEST(Octree, StatisticsAreConsistent) {
+    Mesh mesh(icosphere(5), "ico");
+    auto octree = makeAccel("octree", PropertyList(), {&mesh});
+    std::map<std::string, double> s;
+    for (const AccelStat &st : octree->statistics()) s[st.name] = st.value;
+    for (const char *key : {"build_ms", "triangles", "internal_nodes", "leaf_nodes", "empty_leaves",
+                            "avg_tris_per_leaf", "max_depth_reached", "triangle_refs", "bytes"})
+        EXPECT_TRUE(s.count(key)) << key;
+    EXPECT_EQ(s["triangles"], double(mesh.triangleCount()));
+    EXPECT_EQ(s["leaf_nodes"], 7 * s["internal_nodes"] + 1);  // every inner node has 8 children
+    EXPECT_GE(s["triangle_refs"], s["triangles"]);
+    EXPECT_NEAR(s["avg_tris_per_leaf"], s["triangle_refs"] / (s["leaf_nodes"] - s["empty_leaves"]), 1e-9);
+    EXPECT_GT(s["max_depth_reached"], 0);
+    EXPECT_GE(s["bytes"], s["internal_nodes"] * sizeof(OctreeNode) + 40 * s["triangle_refs"]);
+}
+
+TEST(Octree, PathologicalInputsStayBounded) {
+    struct Case { const char *name; MeshData data; };
+    Case cases[] = {{"fan100k", fan(100000)}, {"identical10k", identical(10000)}, {"needles10k", needles(10000, 3)}};
+    for (Case &c : cases) {
+        Mesh mesh(std::move(c.data), c.name);
+        auto octree = makeAccel("octree", PropertyList(), {&mesh});
+        std::map<std::string, double> s;
+        for (const AccelStat &st : octree->statistics()) s[st.name] = st.value;
+        std::printf("[octree] %-13s refs/tri %.2f, inner %.0f, depth %.0f, %.1f MB, %.0f ms\n", c.name,
+                    s["triangle_refs"] / s["triangles"], s["internal_nodes"], s["max_depth_reached"], s["bytes"] / 1e6,
+                    s["build_ms"]);
+        EXPECT_LE(s["triangle_refs"], 8.0 * s["triangles"]) << c.name;
+        EXPECT_LE(s["internal_nodes"], s["triangles"]) << c.name;
+    }
+}
