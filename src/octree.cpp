@@ -32,7 +32,9 @@ OctreeAccel::OctreeAccel(const PropertyList &props) {
     m_maxDepth = props.getInteger("maxDepth", 16);
     if (m_maxDepth < 0 || m_maxDepth > kMaxDepthLimit)
         props.fail("maxDepth", fmt::format("maxDepth must be in [0, {}], got {}", kMaxDepthLimit, m_maxDepth));
-    m_leafSize = props.getInteger("leafSize", 8);
+    // Measured on the 871k dragon (single thread, against Embree): with 16-lane leaf tests,
+    // leaves below 64 triangles cost more in nodes and duplicated references than they save.
+    m_leafSize = props.getInteger("leafSize", 64);
     if (m_leafSize < 1) props.fail("leafSize", fmt::format("leafSize must be at least 1, got {}", m_leafSize));
     m_overlap = parseOverlap(props);
     m_traversal = parseTraversal(props);

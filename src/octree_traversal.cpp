@@ -59,18 +59,22 @@ struct StackEntry {
 };
 
 #if NORI_OCTREE_AVX512
-/// Permutation tables: lane j < 8 gets the entry plane of child j ^ octant, lane 8 + j its
-/// exit plane, so the lanes come out in the ray's front-to-back octant order.
+/// Permutation tables: lane j < 8 gets the entry plane of child (7 - j) ^ octant, lane 8 + j
+/// its exit plane, so the lanes come out in the ray's back-to-front octant order (pushed onto
+/// the stack in that order, the nearest child ends up on top).
 struct PermTable {
     alignas(64) int idx[8][2][16];
+    alignas(32) int child[8][8];
     PermTable() {
-        for (int oct = 0; oct < 8; ++oct)
+        for (int oct = 0; oct < 8; ++oct) {
             for (int neg = 0; neg < 2; ++neg)
                 for (int j = 0; j < 8; ++j) {
-                    int c = j ^ oct;
+                    int c = (7 - j) ^ oct;
                     idx[oct][neg][j] = neg ? 8 + c : c;
                     idx[oct][neg][8 + j] = neg ? c : 8 + c;
                 }
+            for (int j = 0; j < 8; ++j) child[oct][j] = (7 - j) ^ oct;
+        }
     }
 };
 const PermTable kPerm;
@@ -80,9 +84,11 @@ const PermTable kPerm;
 struct SimdRay {
     __m512 org[3], scale[3];
     __m512i perm[3];
+    __m256i childPerm;
     unsigned octant;
 
     explicit SimdRay(const SlabRay &s) : octant(s.octant) {
+        childPerm = _mm256_load_si256(reinterpret_cast<const __m256i *>(kPerm.child[octant]));
         for (int a = 0; a < 3; ++a) {
             org[a] = _mm512_set1_ps(s.o[a]);
             scale[a] = _mm512_mask_blend_ps(0xFF00, _mm512_set1_ps(s.rcpNear[a]), _mm512_set1_ps(-s.rcpFar[a]));
@@ -92,8 +98,10 @@ struct SimdRay {
     static __m512 interval(float mint, float maxt) {
         return _mm512_mask_blend_ps(0xFF00, _mm512_set1_ps(mint), _mm512_set1_ps(-maxt));
     }
-    /// Bit j set: child j ^ octant is entered within the interval, at tnear[j].
-    unsigned test(const OctreeNode &node, __m512 interval, float tnear[8]) const {
+    /// Push the children of \p node that the ray enters within the interval onto the stack
+    /// (farthest first, by octant order) with their entry distances; returns how many.
+    /// Register compress plus a full store: a compress straight to memory is slow on some cores.
+    int push(const OctreeNode &node, __m512 interval, uint32_t *child, uint32_t *count, float *tnear) const {
         __m512 acc = interval;
         for (int a = 0; a < 3; ++a) {
             __m512 planes = _mm512_permutexvar_ps(perm[a], _mm512_load_ps(node.box[a]));
@@ -102,8 +110,13 @@ struct SimdRay {
         }
         __m256 entry = _mm512_castps512_ps256(acc);
         __m256 exit = _mm256_xor_ps(_mm512_extractf32x8_ps(acc, 1), _mm256_set1_ps(-0.0f));
-        _mm256_storeu_ps(tnear, entry);
-        return _mm256_cmp_ps_mask(entry, exit, _CMP_LE_OQ);
+        __mmask8 mask = _mm256_cmp_ps_mask(entry, exit, _CMP_LE_OQ);
+        __m256i c = _mm256_permutexvar_epi32(childPerm, _mm256_load_si256(reinterpret_cast<const __m256i *>(node.child)));
+        __m256i n = _mm256_permutexvar_epi32(childPerm, _mm256_load_si256(reinterpret_cast<const __m256i *>(node.count)));
+        _mm256_storeu_si256(reinterpret_cast<__m256i *>(child), _mm256_maskz_compress_epi32(mask, c));
+        _mm256_storeu_si256(reinterpret_cast<__m256i *>(count), _mm256_maskz_compress_epi32(mask, n));
+        _mm256_storeu_ps(tnear, _mm256_maskz_compress_ps(mask, entry));
+        return __builtin_popcount(mask);
     }
 };
 #else
@@ -114,11 +127,16 @@ struct SimdRay {
     explicit SimdRay(const SlabRay &s) : slab(s), octant(s.octant) {}
     struct Interval { float mint, maxt; };
     static Interval interval(float mint, float maxt) { return {mint, maxt}; }
-    unsigned test(const OctreeNode &node, Interval iv, float tnear[8]) const {
-        unsigned mask = 0;
-        for (int j = 0; j < 8; ++j)
-            if (slab.hit(node, int(j ^ octant), iv.mint, iv.maxt, tnear[j])) mask |= 1u << j;
-        return mask;
+    int push(const OctreeNode &node, Interval iv, uint32_t *child, uint32_t *count, float *tnear) const {
+        int k = 0;
+        for (int j = 7; j >= 0; --j) {
+            int c = int(unsigned(j) ^ octant);
+            if (slab.hit(node, c, iv.mint, iv.maxt, tnear[k])) {
+                child[k] = node.child[c];
+                count[k++] = node.count[c];
+            }
+        }
+        return k;
     }
 };
 #endif
@@ -139,42 +157,26 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     best.t = ray.maxt;
     auto interval = SimdRay::interval(ray.mint, best.t);
 
-    StackEntry stack[kStackSize];
-    int sp = 0;
-    uint32_t child = 0, count = 0;
-    alignas(32) float tnear[8];
-    while (true) {
+    // Structure-of-arrays stack, with room for a full 8-lane store past the top.
+    alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
+    alignas(32) float stackT[kStackSize + 8];
+    stackChild[0] = 0;
+    stackCount[0] = 0;
+    stackT[0] = ray.mint;
+    int sp = 1;
+    while (sp > 0) {
+        --sp;
+        if (stackT[sp] > best.t) continue;  // entered only beyond the closest hit so far
+        uint32_t child = stackChild[sp], count = stackCount[sp];
         if (count == 0) {
-            const OctreeNode &node = m_nodes[child];
-            unsigned mask = simd.test(node, interval, tnear);
-            if (mask) {
-                int first = __builtin_ctz(mask);
-                mask &= mask - 1;
-                while (mask) {  // farthest first, so that nearer ones pop first
-                    int j = 31 - __builtin_clz(mask);
-                    mask ^= 1u << j;
-                    unsigned c = unsigned(j) ^ simd.octant;
-                    stack[sp++] = {node.child[c], node.count[c], tnear[j]};
-                }
-                unsigned c = unsigned(first) ^ simd.octant;
-                child = node.child[c];
-                count = node.count[c];
-                continue;
-            }
+            sp += simd.push(m_nodes[child], interval, stackChild + sp, stackCount + sp, stackT + sp);
         } else if (m_triangles.intersect(tri, child, count, best)) {
             interval = SimdRay::interval(ray.mint, best.t);
         }
-        do {
-            if (sp == 0) {
-                if (best.prim == ~0u) return false;
-                hit = best;
-                return true;
-            }
-            --sp;
-        } while (stack[sp].tnear > best.t);
-        child = stack[sp].child;
-        count = stack[sp].count;
     }
+    if (best.prim == ~0u) return false;
+    hit = best;
+    return true;
 }
 
 bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
@@ -183,37 +185,20 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
     const TriangleRay tri(ray);
     const auto interval = SimdRay::interval(ray.mint, ray.maxt);
 
-    uint32_t stack[kStackSize][2];
-    int sp = 0;
-    uint32_t child = 0, count = 0;
-    alignas(32) float tnear[8];
-    while (true) {
-        if (count == 0) {
-            const OctreeNode &node = m_nodes[child];
-            unsigned mask = simd.test(node, interval, tnear);
-            if (mask) {
-                int first = __builtin_ctz(mask);
-                mask &= mask - 1;
-                while (mask) {
-                    int j = 31 - __builtin_clz(mask);
-                    mask ^= 1u << j;
-                    unsigned c = unsigned(j) ^ simd.octant;
-                    stack[sp][0] = node.child[c];
-                    stack[sp++][1] = node.count[c];
-                }
-                unsigned c = unsigned(first) ^ simd.octant;
-                child = node.child[c];
-                count = node.count[c];
-                continue;
-            }
-        } else if (m_triangles.occluded(tri, child, count, ray.maxt)) {
-            return true;
-        }
-        if (sp == 0) return false;
+    alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
+    alignas(32) float stackT[kStackSize + 8];
+    stackChild[0] = 0;
+    stackCount[0] = 0;
+    int sp = 1;
+    while (sp > 0) {
         --sp;
-        child = stack[sp][0];
-        count = stack[sp][1];
+        uint32_t child = stackChild[sp], count = stackCount[sp];
+        if (count == 0)
+            sp += simd.push(m_nodes[child], interval, stackChild + sp, stackCount + sp, stackT + sp);
+        else if (m_triangles.occluded(tri, child, count, ray.maxt))
+            return true;
     }
+    return false;
 }
 
 // ---------------------------------------------------------------------------------------------
