@@ -4,7 +4,8 @@
 namespace nori {
 
 /// \brief `<accel type="brute">`: one leaf holding every triangle, tested with the same
-/// TriangleStore kernels as the octree's leaves. Property: `intersector` (mt | watertight).
+/// TriangleStore kernels as the octree's leaves (16 triangles at a time, skipping the
+/// 16-triangle chunks whose box the ray misses). Property: `intersector` (mt | watertight).
 class BruteAccel : public Accel {
 public:
     explicit BruteAccel(const PropertyList &props) : m_intersector(parseIntersector(props, "watertight")) {}
@@ -12,13 +13,13 @@ public:
     bool intersect(const Ray3f &ray, Hit &hit) const override {
         Hit best;
         best.t = ray.maxt;
-        if (!m_triangles.intersect(TriangleRay(ray), 0, uint32_t(m_triangles.size()), best)) return false;
+        if (!m_triangles.intersect(TriangleRay(ray), 0, m_count, best)) return false;
         hit = best;
         return true;
     }
 
     bool occluded(const Ray3f &ray) const override {
-        return m_triangles.occluded(TriangleRay(ray), 0, uint32_t(m_triangles.size()), ray.maxt);
+        return m_triangles.occluded(TriangleRay(ray), 0, m_count, ray.maxt);
     }
 
     std::vector<AccelStat> statistics() const override {
@@ -44,13 +45,15 @@ protected:
                 for (int k = 0; k < 3; ++k) v[k] = m_meshes[m]->vertex(f, k);
                 if (v[0].allFinite() && v[1].allFinite() && v[2].allFinite()) prims.push_back(prim);
             }
-        m_triangles.reset(m_intersector, prims.size());
-        m_triangles.setLeaf(0, prims.data(), uint32_t(prims.size()), vertices);
+        m_count = uint32_t(prims.size());
+        m_triangles.reset(m_intersector, TriangleStore::leafWords(m_count));
+        m_triangles.setLeaf(0, prims.data(), m_count, vertices);
     }
 
 private:
     Intersector m_intersector;
     TriangleStore m_triangles;
+    uint32_t m_count = 0;  ///< triangles in the single leaf
 };
 
 NORI_REGISTER_CLASS(BruteAccel, "brute", EAccel);

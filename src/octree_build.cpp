@@ -34,6 +34,7 @@ struct TempNode {
     std::vector<uint32_t> refs[8];
     size_t subtreeNodes = 1;  ///< inner nodes in this subtree, this one included
     size_t subtreeRefs = 0;   ///< triangle references in the leaves of this subtree
+    size_t subtreeWords = 0;  ///< TriangleStore words of the leaves of this subtree
 };
 
 /// Cell of child \p c of \p cell: bit 0/1/2 of c selects the upper half along x/y/z.
@@ -134,15 +135,17 @@ std::unique_ptr<TempNode> split(const BuildInput &in, const BoundingBox3f &cell,
         if (node->inner[c]) {
             node->subtreeNodes += node->inner[c]->subtreeNodes;
             node->subtreeRefs += node->inner[c]->subtreeRefs;
+            node->subtreeWords += node->inner[c]->subtreeWords;
         } else {
             node->subtreeRefs += node->refs[c].size();
+            if (!node->refs[c].empty()) node->subtreeWords += TriangleStore::leafWords(uint32_t(node->refs[c].size()));
         }
     }
     return node;
 }
 
-/// Write \p node at \p index (children in DFS preorder after it) and its leaves from \p refOffset.
-void flatten(const TempNode &node, uint32_t index, uint32_t refOffset, std::vector<OctreeNode> &nodes,
+/// Write \p node at \p index (children in DFS preorder after it) and its leaves from word \p offset.
+void flatten(const TempNode &node, uint32_t index, uint32_t offset, std::vector<OctreeNode> &nodes,
              TriangleStore &store, const std::vector<std::array<Point3f, 3>> &vertices) {
     OctreeNode &out = nodes[index];
     uint32_t next = index + 1;
@@ -162,18 +165,18 @@ void flatten(const TempNode &node, uint32_t index, uint32_t refOffset, std::vect
             out.child[c] = next;
             if (sub.subtreeRefs > kParallelRefs) {
                 spawned = true;
-                group.run([&, next, refOffset] { flatten(sub, next, refOffset, nodes, store, vertices); });
+                group.run([&, next, offset] { flatten(sub, next, offset, nodes, store, vertices); });
             } else {
-                flatten(sub, next, refOffset, nodes, store, vertices);
+                flatten(sub, next, offset, nodes, store, vertices);
             }
             next += uint32_t(sub.subtreeNodes);
-            refOffset += uint32_t(sub.subtreeRefs);
+            offset += uint32_t(sub.subtreeWords);
         } else if (!empty) {
             uint32_t count = uint32_t(node.refs[c].size());
-            out.child[c] = refOffset;
+            out.child[c] = offset;
             out.count[c] = count;
-            store.setLeaf(refOffset, node.refs[c].data(), count, vertices);
-            refOffset += count;
+            store.setLeaf(offset, node.refs[c].data(), count, vertices);
+            offset += uint32_t(TriangleStore::leafWords(count));
         }
     }
     if (spawned) group.wait();
@@ -227,6 +230,7 @@ void OctreeAccel::buildImpl() {
         root = std::make_unique<TempNode>();
         if (!all.empty()) root->box[0] = sceneBox;
         root->subtreeRefs = all.size();
+        root->subtreeWords = all.empty() ? 0 : TriangleStore::leafWords(uint32_t(all.size()));
         root->refs[0] = std::move(all);
     }
     std::vector<uint32_t>().swap(all);
@@ -234,7 +238,10 @@ void OctreeAccel::buildImpl() {
 
     m_nodes.resize(root->subtreeNodes);
     m_nodes.shrink_to_fit();
-    m_triangles.reset(m_intersector, root->subtreeRefs);
+    if (root->subtreeWords >= size_t(UINT32_MAX))
+        throw NoriException("octree: the scene needs {} triangle references, too many for 32-bit offsets",
+                            root->subtreeRefs);
+    m_triangles.reset(m_intersector, root->subtreeWords);
     flatten(*root, 0, 0, m_nodes, m_triangles, vertices);
 
     // Statistics over the temporary tree (serial; a few ten thousand nodes).

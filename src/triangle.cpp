@@ -1,9 +1,13 @@
 // Ray/triangle intersectors and the leaf triangle store.
 // No FMA contraction in this file: see triangle.h for why results must be bit-reproducible.
 #pragma GCC optimize("fp-contract=off")
+// GCC 12's _mm512_max_ps / _mm512_min_ps expand to _mm512_undefined_ps(), which -Wuninitialized
+// reports once inlined here; the value is never read.
+#pragma GCC diagnostic ignored "-Wuninitialized"
 
 #include <nori/triangle.h>
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 
 #if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
@@ -37,6 +41,11 @@ TriangleRay::TriangleRay(const Ray3f &ray) {
     sx = d[kx] / d[kz];
     sy = d[ky] / d[kz];
     sz = 1.0f / d[kz];
+    for (int a = 0; a < 3; ++a) {
+        neg[a] = std::signbit(ray.d[a]) ? 1 : 0;
+        rcpNear[a] = ray.dRcp[a] * (1.0f - 0x1p-20f);
+        rcpFar[a] = ray.dRcp[a] * (1.0f + 0x1p-20f);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -100,20 +109,38 @@ bool intersectWatertight(const TriangleRay &r, const float p0[3], const float p1
 
 // ---------------------------------------------------------------------------------------------
 
-void TriangleStore::reset(Intersector kind, size_t refs) {
+void TriangleStore::reset(Intersector kind, size_t words) {
     m_kind = kind;
-    m_data.assign(9 * refs, 0.0f);
+    m_data.assign(words, 0.0f);
     m_data.shrink_to_fit();
-    m_prims.assign(refs, 0u);
-    m_prims.shrink_to_fit();
 }
 
-void TriangleStore::setLeaf(uint32_t begin, const uint32_t *prims, uint32_t n,
+namespace {
+/// Order \p prims[begin, end) so that every aligned run of 16 is spatially compact: split at
+/// a multiple of 16 along the longest axis of the centroids, recursively (a median split as in
+/// a BVH's bottom levels).
+void orderChunks(uint32_t *prims, uint32_t begin, uint32_t end, const std::vector<std::array<Point3f, 3>> &v) {
+    if (end - begin <= 16) return;
+    auto centroid = [&](uint32_t p) { return v[p][0] + v[p][1] + v[p][2]; };
+    BoundingBox3f box;
+    for (uint32_t i = begin; i < end; ++i) box.expandBy(centroid(prims[i]));
+    int axis = box.majorAxis();
+    uint32_t chunks = (end - begin + 15) / 16, mid = begin + 16 * ((chunks + 1) / 2);
+    std::nth_element(prims + begin, prims + mid, prims + end,
+                     [&](uint32_t a, uint32_t b) { return centroid(a)[axis] < centroid(b)[axis]; });
+    orderChunks(prims, begin, mid, v);
+    orderChunks(prims, mid, end, v);
+}
+} // namespace
+
+void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
                             const std::vector<std::array<Point3f, 3>> &vertices) {
-    float *rows = m_data.data() + size_t(9) * begin;
+    std::vector<uint32_t> prims(ids, ids + n);
+    orderChunks(prims.data(), 0, n, vertices);
+    float *rows = m_data.data() + offset;
     for (uint32_t i = 0; i < n; ++i) {
         const std::array<Point3f, 3> &p = vertices[prims[i]];
-        m_prims[begin + i] = prims[i];
+        std::memcpy(rows + size_t(9) * n + i, &prims[i], sizeof(uint32_t));
         for (int c = 0; c < 3; ++c) {
             rows[(0 + c) * n + i] = p[0][c];
             if (m_kind == Intersector::MT) {
@@ -123,6 +150,19 @@ void TriangleStore::setLeaf(uint32_t begin, const uint32_t *prims, uint32_t n,
                 rows[(3 + c) * n + i] = p[1][c];
                 rows[(6 + c) * n + i] = p[2][c];
             }
+        }
+    }
+    if (n <= 16) return;
+    // Chunk boxes, structure of arrays: rows min x, y, z, max x, y, z of nc floats.
+    const uint32_t nc = (n + 15) / 16;
+    float *boxes = rows + size_t(10) * n;
+    for (uint32_t k = 0; k < nc; ++k) {
+        BoundingBox3f b;
+        for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i)
+            for (int c = 0; c < 3; ++c) b.expandBy(vertices[prims[i]][c]);
+        for (int a = 0; a < 3; ++a) {
+            boxes[size_t(a) * nc + k] = b.min[a];
+            boxes[size_t(3 + a) * nc + k] = b.max[a];
         }
     }
 }
@@ -135,20 +175,78 @@ inline void loadCorner(const float *rows, uint32_t n, uint32_t i, int first, flo
     out[2] = rows[(first + 2) * n + i];
 }
 
-/// Scalar loop over triangles [from, n) of a leaf; the lexicographic minimum (t, prim) wins.
-bool intersectScalar(Intersector kind, const TriangleRay &ray, const float *rows, const uint32_t *prims, uint32_t from,
-                     uint32_t n, Hit &best) {
+inline uint32_t primAt(const float *rows, uint32_t n, uint32_t i) {
+    uint32_t p;
+    std::memcpy(&p, rows + size_t(9) * n + i, sizeof(uint32_t));
+    return p;
+}
+
+/// Scalar kernel on one triangle of a leaf.
+inline bool testOne(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t i, float maxt,
+                    float &t, float &u, float &v) {
+    float a[3], b[3], c[3];
+    loadCorner(rows, n, i, 0, a);
+    loadCorner(rows, n, i, 3, b);
+    loadCorner(rows, n, i, 6, c);
+    return kind == Intersector::MT ? intersectMT(ray, a, b, c, maxt, t, u, v)
+                                   : intersectWatertight(ray, a, b, c, maxt, t, u, v);
+}
+
+/// Scalar closest hit over chunk k (triangles 16k .. 16k + 15); lexicographic minimum (t, prim).
+bool chunkIntersectScalar(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
+                          Hit &best) {
     bool found = false;
-    for (uint32_t i = from; i < n; ++i) {
-        float a[3], b[3], c[3], t, u, v;
-        loadCorner(rows, n, i, 0, a);
-        loadCorner(rows, n, i, 3, b);
-        loadCorner(rows, n, i, 6, c);
-        bool hit = kind == Intersector::MT ? intersectMT(ray, a, b, c, best.t, t, u, v)
-                                           : intersectWatertight(ray, a, b, c, best.t, t, u, v);
-        if (hit && (t < best.t || prims[i] < best.prim)) {
-            best = Hit{t, u, v, prims[i]};
+    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i) {
+        float t, u, v;
+        uint32_t prim = primAt(rows, n, i);
+        if (testOne(kind, ray, rows, n, i, best.t, t, u, v) && (t < best.t || prim < best.prim)) {
+            best = Hit{t, u, v, prim};
             found = true;
+        }
+    }
+    return found;
+}
+
+/// Entry distances of the ray into chunk boxes [16 g, 16 g + 16) of a leaf with nc chunks;
+/// bit j of the result is set when chunk 16 g + j is entered within [ray.mint, maxt].
+/// The conservative slab test of the octree nodes; NaN never narrows the interval.
+unsigned chunkEntriesScalar(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, float tn[16]) {
+    const uint32_t nc = (n + 15) / 16;
+    const float *boxes = rows + size_t(10) * n;
+    unsigned mask = 0;
+    for (uint32_t j = 0; j < 16 && 16 * g + j < nc; ++j) {
+        uint32_t k = 16 * g + j;
+        float t0 = r.mint, t1 = maxt;
+        for (int a = 0; a < 3; ++a) {
+            float tNear = (boxes[(3 * r.neg[a] + a) * nc + k] - r.o[a]) * r.rcpNear[a];
+            float tFar = (boxes[(3 * (1 - r.neg[a]) + a) * nc + k] - r.o[a]) * r.rcpFar[a];
+            t0 = tNear > t0 ? tNear : t0;
+            t1 = tFar < t1 ? tFar : t1;
+        }
+        tn[j] = t0;
+        if (t0 <= t1) mask |= 1u << j;
+    }
+    return mask;
+}
+
+/// Scalar loop over a leaf: chunks in order of entry distance (ties: lower index), skipping
+/// those entered beyond the closest hit; the SIMD path visits exactly the same chunks.
+bool intersectScalar(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, Hit &best) {
+    if (n <= 16) return chunkIntersectScalar(kind, ray, rows, n, 0, best);
+    bool found = false;
+    const uint32_t nc = (n + 15) / 16;
+    for (uint32_t g = 0; 16 * g < nc; ++g) {
+        float tn[16];
+        unsigned mask = chunkEntriesScalar(ray, rows, n, g, best.t, tn);
+        while (mask) {
+            int k = -1;
+            for (unsigned m = mask; m; m &= m - 1) {
+                int j = __builtin_ctz(m);
+                if (k < 0 || tn[j] < tn[k]) k = j;
+            }
+            if (tn[k] > best.t) break;
+            mask &= ~(1u << k);
+            found |= chunkIntersectScalar(kind, ray, rows, n, 16 * g + uint32_t(k), best);
         }
     }
     return found;
@@ -239,81 +337,126 @@ inline Lanes test16(Intersector kind, const TriangleRay &r, const float *rows, u
 #endif
 } // namespace
 
-bool TriangleStore::intersect(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const {
-    const float *rows = m_data.data() + size_t(9) * begin;
-    const uint32_t *prims = m_prims.data() + begin;
 #if NORI_TRIANGLE_AVX512
+namespace {
+/// Minimum over the lanes in \p mask (GCC 12's masked reduction trips -Wuninitialized).
+inline float reduceMin(__mmask16 mask, __m512 v) {
+    return _mm512_reduce_min_ps(_mm512_mask_blend_ps(mask, _mm512_set1_ps(Infinity), v));
+}
+
+/// SIMD closest hit over chunk k: one 16-lane step.
+bool chunkIntersectSimd(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k, Hit &best) {
+    const uint32_t i = 16 * k;
+    const float *prims = rows + size_t(9) * n;
+    __mmask16 m = n - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - i)) - 1);
+    Lanes l = test16(kind, ray, rows, n, i, m, best.t);
     bool found = false;
-    for (uint32_t i = 0; i < n; i += 16) {
-        __mmask16 m = n - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - i)) - 1);
-        Lanes l = test16(m_kind, ray, rows, n, i, m, best.t);
-        // Rare watertight lanes with an exactly zero edge function: the scalar kernel
-        // (double-precision fallback) decides them one by one.
-        for (unsigned redo = l.redo; redo; redo &= redo - 1) {
-            uint32_t k = i + uint32_t(__builtin_ctz(redo));
-            float a[3], b[3], c[3], t, u, v;
-            loadCorner(rows, n, k, 0, a);
-            loadCorner(rows, n, k, 3, b);
-            loadCorner(rows, n, k, 6, c);
-            if (intersectWatertight(ray, a, b, c, best.t, t, u, v) && (t < best.t || prims[k] < best.prim)) {
-                best = Hit{t, u, v, prims[k]};
-                found = true;
-            }
+    // Rare watertight lanes with an exactly zero edge function: the scalar kernel
+    // (double-precision fallback) decides them one by one.
+    for (unsigned redo = l.redo; redo; redo &= redo - 1) {
+        uint32_t j = i + uint32_t(__builtin_ctz(redo));
+        float t, u, v;
+        uint32_t prim = primAt(rows, n, j);
+        if (testOne(kind, ray, rows, n, j, best.t, t, u, v) && (t < best.t || prim < best.prim)) {
+            best = Hit{t, u, v, prim};
+            found = true;
         }
-        if (!l.valid) continue;
-        // Lexicographic minimum of (t, prim) over the hit lanes, as the scalar loop finds it.
-        float tmin = _mm512_mask_reduce_min_ps(l.valid, l.t);
-        __mmask16 nearest = _mm512_mask_cmp_ps_mask(l.valid, l.t, _mm512_set1_ps(tmin), _CMP_EQ_OQ);
-        __m512i ids = _mm512_maskz_loadu_epi32(m, prims + i);
-        uint32_t prim = _mm512_mask_reduce_min_epu32(nearest, ids);
-        if (!(tmin < best.t || (tmin == best.t && prim < best.prim))) continue;
-        __mmask16 lane = _mm512_mask_cmp_epu32_mask(nearest, ids, _mm512_set1_epi32(int(prim)), _MM_CMPINT_EQ);
-        int k = __builtin_ctz(lane);
-        alignas(64) float us[16], vs[16];
-        _mm512_store_ps(us, l.u);
-        _mm512_store_ps(vs, l.v);
-        best = Hit{tmin, us[k], vs[k], prim};
-        found = true;
+    }
+    if (!l.valid) return found;
+    // Lexicographic minimum of (t, prim) over the hit lanes, as the scalar loop finds it.
+    float tmin = reduceMin(l.valid, l.t);
+    __mmask16 nearest = _mm512_mask_cmp_ps_mask(l.valid, l.t, _mm512_set1_ps(tmin), _CMP_EQ_OQ);
+    __m512i ids = _mm512_maskz_loadu_epi32(m, prims + i);
+    uint32_t prim = uint32_t(_mm512_reduce_min_epu32(_mm512_mask_blend_epi32(nearest, _mm512_set1_epi32(-1), ids)));
+    if (!(tmin < best.t || (tmin == best.t && prim < best.prim))) return found;
+    __mmask16 lane = _mm512_mask_cmp_epu32_mask(nearest, ids, _mm512_set1_epi32(int(prim)), _MM_CMPINT_EQ);
+    int j = __builtin_ctz(lane);
+    alignas(64) float us[16], vs[16];
+    _mm512_store_ps(us, l.u);
+    _mm512_store_ps(vs, l.v);
+    best = Hit{tmin, us[j], vs[j], prim};
+    return true;
+}
+
+/// The same values as chunkEntriesScalar(), sixteen chunk boxes at once.
+__mmask16 chunkEntriesSimd(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, __m512 &tn) {
+    const uint32_t nc = (n + 15) / 16;
+    const float *boxes = rows + size_t(10) * n + 16 * g;
+    __mmask16 m = nc - 16 * g >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (nc - 16 * g)) - 1);
+    __m512 t0 = _mm512_set1_ps(r.mint), t1 = _mm512_set1_ps(maxt);
+    for (int a = 0; a < 3; ++a) {
+        __m512 o = _mm512_set1_ps(r.o[a]);
+        __m512 nearPlane = _mm512_maskz_loadu_ps(m, boxes + size_t(3 * r.neg[a] + a) * nc);
+        __m512 farPlane = _mm512_maskz_loadu_ps(m, boxes + size_t(3 * (1 - r.neg[a]) + a) * nc);
+        __m512 tNear = _mm512_mul_ps(_mm512_sub_ps(nearPlane, o), _mm512_set1_ps(r.rcpNear[a]));
+        __m512 tFar = _mm512_mul_ps(_mm512_sub_ps(farPlane, o), _mm512_set1_ps(r.rcpFar[a]));
+        t0 = _mm512_max_ps(tNear, t0);  // second operand on NaN or equality: as the scalar code
+        t1 = _mm512_min_ps(tFar, t1);
+    }
+    tn = t0;
+    return _mm512_mask_cmp_ps_mask(m, t0, t1, _CMP_LE_OQ);
+}
+} // namespace
+#endif
+
+bool TriangleStore::intersect(const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const {
+    const float *rows = m_data.data() + offset;
+#if NORI_TRIANGLE_AVX512
+    if (n <= 16) return chunkIntersectSimd(m_kind, ray, rows, n, 0, best);
+    bool found = false;
+    const uint32_t nc = (n + 15) / 16;
+    for (uint32_t g = 0; 16 * g < nc; ++g) {
+        __m512 tn;
+        __mmask16 mask = chunkEntriesSimd(ray, rows, n, g, best.t, tn);
+        while (mask) {  // nearest entered chunk first (ties: lower index)
+            float tmin = reduceMin(mask, tn);
+            if (tmin > best.t) break;
+            __mmask16 at = _mm512_mask_cmp_ps_mask(mask, tn, _mm512_set1_ps(tmin), _CMP_EQ_OQ);
+            int k = __builtin_ctz(at);
+            mask &= __mmask16(~(1u << k));
+            found |= chunkIntersectSimd(m_kind, ray, rows, n, 16 * g + uint32_t(k), best);
+        }
     }
     return found;
 #else
-    return intersectScalar(m_kind, ray, rows, prims, 0, n, best);
+    return intersectScalar(m_kind, ray, rows, n, best);
 #endif
 }
 
-bool TriangleStore::occluded(const TriangleRay &ray, uint32_t begin, uint32_t n, float maxt) const {
-    const float *rows = m_data.data() + size_t(9) * begin;
+bool TriangleStore::occluded(const TriangleRay &ray, size_t offset, uint32_t n, float maxt) const {
+    const float *rows = m_data.data() + offset;
+    const uint32_t nc = (n + 15) / 16;
+    for (uint32_t g = 0; 16 * g < nc; ++g) {
 #if NORI_TRIANGLE_AVX512
-    for (uint32_t i = 0; i < n; i += 16) {
-        __mmask16 m = n - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - i)) - 1);
-        Lanes l = test16(m_kind, ray, rows, n, i, m, maxt);
-        if (l.valid) return true;
-        for (unsigned redo = l.redo; redo; redo &= redo - 1) {
-            uint32_t k = i + uint32_t(__builtin_ctz(redo));
-            float a[3], b[3], c[3], t, u, v;
-            loadCorner(rows, n, k, 0, a);
-            loadCorner(rows, n, k, 3, b);
-            loadCorner(rows, n, k, 6, c);
-            if (intersectWatertight(ray, a, b, c, maxt, t, u, v)) return true;
+        __m512 tn;
+        unsigned mask = n <= 16 ? 1u : chunkEntriesSimd(ray, rows, n, g, maxt, tn);
+#else
+        float tn[16];
+        unsigned mask = n <= 16 ? 1u : chunkEntriesScalar(ray, rows, n, g, maxt, tn);
+#endif
+        for (; mask; mask &= mask - 1) {
+            uint32_t k = 16 * g + uint32_t(__builtin_ctz(mask));
+#if NORI_TRIANGLE_AVX512
+            __mmask16 m = n - 16 * k >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - 16 * k)) - 1);
+            Lanes l = test16(m_kind, ray, rows, n, 16 * k, m, maxt);
+            if (l.valid) return true;
+            for (unsigned redo = l.redo; redo; redo &= redo - 1) {
+                float t, u, v;
+                if (testOne(m_kind, ray, rows, n, 16 * k + uint32_t(__builtin_ctz(redo)), maxt, t, u, v)) return true;
+            }
+#else
+            for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i) {
+                float t, u, v;
+                if (testOne(m_kind, ray, rows, n, i, maxt, t, u, v)) return true;
+            }
+#endif
         }
     }
     return false;
-#else
-    for (uint32_t i = 0; i < n; ++i) {
-        float a[3], b[3], c[3], t, u, v;
-        loadCorner(rows, n, i, 0, a);
-        loadCorner(rows, n, i, 3, b);
-        loadCorner(rows, n, i, 6, c);
-        bool hit = m_kind == Intersector::MT ? intersectMT(ray, a, b, c, maxt, t, u, v)
-                                             : intersectWatertight(ray, a, b, c, maxt, t, u, v);
-        if (hit) return true;
-    }
-    return false;
-#endif
 }
 
-bool TriangleStore::intersectReference(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const {
-    return intersectScalar(m_kind, ray, m_data.data() + size_t(9) * begin, m_prims.data() + begin, 0, n, best);
+bool TriangleStore::intersectReference(const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const {
+    return intersectScalar(m_kind, ray, m_data.data() + offset, n, best);
 }
 
 } // namespace nori

@@ -12,6 +12,10 @@ using V3d = Eigen::Vector3d;
 
 namespace {
 
+// Not every test file uses every helper.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+
 /// Closest points between segments [p0, p1] and [q0, q1]; returns the distance (double).
 double segmentDistance(const V3d &p0, const V3d &p1, const V3d &q0, const V3d &q1) {
     V3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
@@ -66,6 +70,8 @@ bool crossesInterior(const V3d &r0, const V3d &r1, const V3d &a, const V3d &b, c
     return inside && segmentDistance(r0, r1, a, b) > eps && segmentDistance(r0, r1, b, c) > eps &&
            segmentDistance(r0, r1, c, a) > eps;
 }
+
+#pragma GCC diagnostic pop
 
 } // namespace
 } // namespace nori

@@ -246,7 +246,7 @@ TEST(Octree, MatchesBruteForceBitForBit) {
             Answers reference = answers(*makeAccel("brute", bp, meshes), rays);
             for (const char *trav : {"simd", "sorted"})
                 for (const char *overlap : {"exact", "bbox"})
-                    for (auto [depth, leaf] : {std::pair{16, 8}, {3, 1}, {0, 8}, {24, 1}, {10, 32}}) {
+                    for (auto [depth, leaf] : {std::pair{16, 8}, {3, 1}, {0, 8}, {24, 1}, {10, 32}, {16, 512}}) {
                         if (depth == 0 && scene.name != "empty_and_single") continue;  // brute force again
                         PropertyList p;
                         p.setString("intersector", isect);
@@ -258,8 +258,9 @@ TEST(Octree, MatchesBruteForceBitForBit) {
                         Differences diff = differences(answers(*octree, rays), reference, rays, meshes);
                         // Watertight: bit-identical. MT: only its spurious sliver hits may differ.
                         EXPECT_EQ(diff.other, 0u) << scene.name << ": " << octree->toString();
-                        if (std::string(isect) == "watertight")
+                        if (std::string(isect) == "watertight") {
                             EXPECT_EQ(diff.spurious, 0u) << scene.name << ": " << octree->toString();
+                        }
                         spurious[std::string(isect) + " on " + scene.name] += diff.spurious;
                     }
         }
@@ -282,13 +283,20 @@ TEST(TriangleStore, SimdKernelsMatchScalarKernelsBitForBit) {
     std::vector<Ray3f> rays = testRays(meshes, 4000, 7);
     for (Intersector kind : {Intersector::MT, Intersector::Watertight}) {
         TriangleStore store;
-        store.reset(kind, prims.size());
         // Leaves of every length 1..40 (full and partial 16-lane steps), then the rest.
         uint32_t begin = 0;
-        std::vector<std::pair<uint32_t, uint32_t>> leaves;
-        for (uint32_t len = 1; begin + len <= prims.size() && len <= 40; begin += len, ++len) leaves.push_back({begin, len});
-        leaves.push_back({begin, uint32_t(prims.size()) - begin});
-        for (auto [first, len] : leaves) store.setLeaf(first, prims.data() + first, len, vertices);
+        size_t words = 0;
+        std::vector<std::pair<uint32_t, uint32_t>> ranges;
+        for (uint32_t len = 1; begin + len <= prims.size() && len <= 40; begin += len, ++len) ranges.push_back({begin, len});
+        ranges.push_back({begin, uint32_t(prims.size()) - begin});
+        std::vector<std::pair<size_t, uint32_t>> leaves;
+        for (auto [first, len] : ranges) {
+            leaves.push_back({words, len});
+            words += TriangleStore::leafWords(len);
+        }
+        store.reset(kind, words);
+        for (size_t l = 0; l < ranges.size(); ++l)
+            store.setLeaf(leaves[l].first, prims.data() + ranges[l].first, ranges[l].second, vertices);
         size_t bad = 0, hits = 0;
         for (const Ray3f &ray : rays) {
             TriangleRay tr(ray);
@@ -338,6 +346,7 @@ TEST(Octree, StatisticsAreConsistent) {
     EXPECT_NEAR(s["avg_tris_per_leaf"], s["triangle_refs"] / (s["leaf_nodes"] - s["empty_leaves"]), 1e-9);
     EXPECT_GT(s["max_depth_reached"], 0);
     EXPECT_GE(s["bytes"], s["internal_nodes"] * sizeof(OctreeNode) + 40 * s["triangle_refs"]);
+    EXPECT_LE(s["bytes"], (s["internal_nodes"] + 1) * sizeof(OctreeNode) + 42 * s["triangle_refs"]);
 }
 
 TEST(Octree, PathologicalInputsStayBounded) {

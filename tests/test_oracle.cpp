@@ -187,28 +187,33 @@ TEST_P(Oracle, ExactTraversalsAgreeWithEmbree) {
     for (const RaySet &s : sets) total += s.rays.size();
     EXPECT_GE(total, size_t(1000000));
 
-    struct Config { const char *traversal, *intersector; bool exact; };
-    const Config configs[] = {{"simd", "watertight", true}, {"simd", "mt", true}, {"sorted", "watertight", true},
-                              {"sorted", "mt", true}, {"seed", "watertight", false}};
+    // Default leaves (large, chunked) and deep trees with small leaves.
+    struct Config { const char *traversal, *intersector; int leafSize; bool exact; };
+    const Config configs[] = {{"simd", "watertight", 512, true}, {"simd", "mt", 512, true},
+                              {"sorted", "watertight", 512, true}, {"sorted", "mt", 512, true},
+                              {"simd", "watertight", 16, true}, {"sorted", "mt", 16, true},
+                              {"seed", "watertight", 16, false}};
     for (const Config &cfg : configs) {
         PropertyList props;
         props.setString("traversal", cfg.traversal);
         props.setString("intersector", cfg.intersector);
+        props.setInteger("leafSize", cfg.leafSize);
         OctreeAccel octree(props);
         for (const Mesh *m : meshes) octree.addMesh(m);
         octree.build();
         for (const RaySet &set : sets) {
             auto counts = compare(octree, oracle, judge, set);
-            std::printf("[oracle] %-12s %-6s %-10s %-7s rays %7zu:", GetParam().name.c_str(), cfg.traversal,
-                        cfg.intersector, set.name.c_str(), set.rays.size());
+            std::printf("[oracle] %-12s %-6s %-10s leaf %3d %-7s rays %7zu:", GetParam().name.c_str(), cfg.traversal,
+                        cfg.intersector, cfg.leafSize, set.name.c_str(), set.rays.size());
             for (int v = 0; v < VerdictCount; ++v) std::printf(" %s %zu", kVerdictNames[v], counts[v]);
             if (!cfg.exact)
                 std::printf("  (%.3f%% not closest; measured, not asserted)",
                             100.0 * double(counts[Unexplained]) / double(std::max<size_t>(1, set.rays.size())));
             std::printf("\n");
-            if (cfg.exact)
+            if (cfg.exact) {
                 EXPECT_EQ(counts[Unexplained], 0u)
-                    << cfg.traversal << "/" << cfg.intersector << " on " << set.name << " rays";
+                    << cfg.traversal << "/" << cfg.intersector << "/leafSize " << cfg.leafSize << " on " << set.name;
+            }
         }
     }
 }

@@ -35,42 +35,47 @@ struct TriangleRay {
     // to keep the winding; the shear maps d to (0, 0, 1) in (kx, ky, kz) coordinates.
     int kx, ky, kz;
     float sx, sy, sz;
+    // Chunk boxes: conservative slab test (entry rounded down, exit up).
+    float rcpNear[3], rcpFar[3];
+    int neg[3];
 
     explicit TriangleRay(const Ray3f &ray);
 };
 
 /// \brief Triangles of all meshes, copied in the order the accelerator's leaves visit them.
 ///
-/// A leaf of n triangles starting at reference `begin` is stored structure-of-arrays: nine
-/// rows of n floats at `9 * begin` (MT: v0, e1 = v1 - v0, e2 = v2 - v0; watertight: v0, v1,
-/// v2; each row x, y, z), so SIMD kernels load up to 16 triangles with masked loads and no
-/// padding, plus the global triangle id of each reference.
+/// A leaf of n triangles is one block of words at an offset chosen by its owner: nine rows of
+/// n floats (MT: v0, e1 = v1 - v0, e2 = v2 - v0; watertight: v0, v1, v2; each row x, y, z),
+/// then the n global triangle ids, then (for n > 16) one bounding box per 16-triangle chunk.
+/// Structure-of-arrays rows let the SIMD kernels load 16 triangles with masked loads and no
+/// padding; the triangles of a leaf are ordered so that each chunk is spatially compact, and a
+/// chunk whose box the ray misses is skipped.
 class TriangleStore {
 public:
-    /// \brief Allocate \p refs triangle references for intersector \p kind.
-    void reset(Intersector kind, size_t refs);
-    /// \brief Write the leaf [begin, begin + n) from the global ids \p prims (thread-safe for
+    /// \brief Words (4 bytes) taken by a leaf of \p n triangles.
+    static size_t leafWords(uint32_t n) { return size_t(10) * n + (n > 16 ? size_t(6) * ((n + 15) / 16) : 0); }
+
+    /// \brief Allocate \p words words for intersector \p kind.
+    void reset(Intersector kind, size_t words);
+    /// \brief Write a leaf at word \p offset from the global ids \p prims (thread-safe for
     /// disjoint leaves). \p vertices holds the three corners of every global triangle.
-    void setLeaf(uint32_t begin, const uint32_t *prims, uint32_t n,
-                 const std::vector<std::array<Point3f, 3>> &vertices);
+    void setLeaf(size_t offset, const uint32_t *prims, uint32_t n, const std::vector<std::array<Point3f, 3>> &vertices);
 
     /// \brief Closest hit among the leaf's triangles with t in [ray.mint, best.t]; a hit at
     /// exactly best.t wins only with a lower triangle id (deterministic ties). Updates \p best.
-    bool intersect(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const;
+    bool intersect(const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const;
     /// \brief The scalar kernels on the same leaf (for tests: intersect() must match it bit for bit).
-    bool intersectReference(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const;
+    bool intersectReference(const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const;
     /// \brief Is any triangle of the leaf hit with t in [ray.mint, maxt]?
-    bool occluded(const TriangleRay &ray, uint32_t begin, uint32_t n, float maxt) const;
+    bool occluded(const TriangleRay &ray, size_t offset, uint32_t n, float maxt) const;
 
     Intersector kind() const { return m_kind; }
-    size_t size() const { return m_prims.size(); }
-    /// \brief Bytes owned (triangle data and ids).
-    size_t bytes() const { return m_data.capacity() * sizeof(float) + m_prims.capacity() * sizeof(uint32_t); }
+    /// \brief Bytes owned.
+    size_t bytes() const { return m_data.capacity() * sizeof(float); }
 
 private:
     Intersector m_kind = Intersector::Watertight;
-    std::vector<float> m_data;      ///< 9 floats per reference, SoA per leaf
-    std::vector<uint32_t> m_prims;  ///< global triangle id per reference
+    std::vector<float> m_data;  ///< leaf blocks (ids stored as their bit patterns)
 };
 
 /// \brief Scalar Möller–Trumbore on precomputed (v0, e1, e2); the reference for the SIMD kernel
