@@ -73,7 +73,11 @@ std::unique_ptr<TempNode> split(const BuildInput &in, const BoundingBox3f &cell,
         unsigned my = (b.min.y() <= mid.y() ? 0x33u : 0u) | (b.max.y() >= mid.y() ? 0xCCu : 0u);
         unsigned mz = (b.min.z() <= mid.z() ? 0x0Fu : 0u) | (b.max.z() >= mid.z() ? 0xF0u : 0u);
         unsigned mask = mx & my & mz;
-        if (in.exact && (mask & (mask - 1))) {
+        // Two candidates (one midplane straddled) with the box inside the cell: the triangle is
+        // connected, reaches both closed sides of the plane and stays in one column of
+        // children, so it touches both; the SAT is needed only otherwise.
+        bool inside = (b.min.array() >= cell.min.array()).all() && (b.max.array() <= cell.max.array()).all();
+        if (in.exact && (mask & (mask - 1)) && !(inside && __builtin_popcount(mask) == 2)) {
             const auto &v = in.vertices[refs[i]];
             unsigned kept = 0;
             for (unsigned m = mask; m; m &= m - 1) {

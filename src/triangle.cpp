@@ -116,27 +116,39 @@ void TriangleStore::reset(Intersector kind, size_t words) {
 }
 
 namespace {
-/// Order \p prims[begin, end) so that every aligned run of 16 is spatially compact: split at
-/// a multiple of 16 along the longest axis of the centroids, recursively (a median split as in
+struct Keyed {
+    Point3f centroid;  ///< three times the centroid: only its order matters
+    uint32_t prim;
+};
+
+/// Order [begin, end) so that every aligned run of 16 is spatially compact: split at a
+/// multiple of 16 along the longest axis of the centroids, recursively (a median split as in
 /// a BVH's bottom levels).
-void orderChunks(uint32_t *prims, uint32_t begin, uint32_t end, const std::vector<std::array<Point3f, 3>> &v) {
+void orderChunks(Keyed *items, uint32_t begin, uint32_t end) {
     if (end - begin <= 16) return;
-    auto centroid = [&](uint32_t p) { return v[p][0] + v[p][1] + v[p][2]; };
     BoundingBox3f box;
-    for (uint32_t i = begin; i < end; ++i) box.expandBy(centroid(prims[i]));
+    for (uint32_t i = begin; i < end; ++i) box.expandBy(items[i].centroid);
     int axis = box.majorAxis();
     uint32_t chunks = (end - begin + 15) / 16, mid = begin + 16 * ((chunks + 1) / 2);
-    std::nth_element(prims + begin, prims + mid, prims + end,
-                     [&](uint32_t a, uint32_t b) { return centroid(a)[axis] < centroid(b)[axis]; });
-    orderChunks(prims, begin, mid, v);
-    orderChunks(prims, mid, end, v);
+    std::nth_element(items + begin, items + mid, items + end,
+                     [axis](const Keyed &a, const Keyed &b) { return a.centroid[axis] < b.centroid[axis]; });
+    orderChunks(items, begin, mid);
+    orderChunks(items, mid, end);
 }
 } // namespace
 
 void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
                             const std::vector<std::array<Point3f, 3>> &vertices) {
     std::vector<uint32_t> prims(ids, ids + n);
-    orderChunks(prims.data(), 0, n, vertices);
+    if (n > 16) {
+        std::vector<Keyed> items(n);
+        for (uint32_t i = 0; i < n; ++i) {
+            const auto &v = vertices[ids[i]];
+            items[i] = {v[0] + v[1] + v[2], ids[i]};
+        }
+        orderChunks(items.data(), 0, n);
+        for (uint32_t i = 0; i < n; ++i) prims[i] = items[i].prim;
+    }
     float *rows = m_data.data() + offset;
     for (uint32_t i = 0; i < n; ++i) {
         const std::array<Point3f, 3> &p = vertices[prims[i]];
