@@ -191,8 +191,9 @@ TEST(BadInputCorpus, IsLargeAndEveryFileIsListed) {
     for (const BadCase &c : cases) listed.insert(c.scene);
     for (const auto &entry : fs::directory_iterator(BadDir)) {
         std::string name = entry.path().filename().string();
-        if (entry.path().extension() == ".xml" && name != "good.xml")
+        if (entry.path().extension() == ".xml" && name != "good.xml") {
             EXPECT_TRUE(listed.count(name)) << name << " is not in MANIFEST.tsv";
+        }
     }
 }
 
