@@ -94,6 +94,13 @@ int run(const CommandLine &cl) {
     // Bounds every TBB algorithm: the accel build and the renderer alike.
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
     checkOutputFolder(cl.outputBase);
+    // A folder in the way of an image would only fail after the render, possibly after the
+    // other image was already replaced: refuse before anything is written.
+    for (const char *ext : {".exr", ".png"}) {
+        std::error_code ec;
+        if (std::filesystem::is_directory(cl.outputBase + ext, ec))
+            throw NoriException("{}{}: is a folder, cannot write the image there", cl.outputBase, ext);
+    }
     if (!cl.statsJsonPath.empty()) checkOutputFolder(cl.statsJsonPath);
 
     if (!cl.quiet) std::fprintf(stderr, "Loading %s ...\n", cl.scenePath.c_str());
