@@ -234,6 +234,25 @@ TEST(BadInputCorpus, BadCommandLinesFailWithOneLine) {
         EXPECT_FALSE(fs::exists(work / "x.exr"));
         EXPECT_FALSE(fs::exists(work / "x.png"));
     }
+    // A folder where one of the output images should go: a clean error, and the other image
+    // (written first or second) is not replaced either.
+    for (const char *folder : {"folder.exr", "folder.png"}) {
+        fs::path dir = work / folder;
+        fs::create_directories(dir);
+        fs::path other = work / (std::string("folder") + (dir.extension() == ".exr" ? ".png" : ".exr"));
+        writeFile(other, "earlier image");
+        const std::set<std::string> before = listDirectory(work);
+        RunResult r = runNori({"-q", "-t", "1", "-o", (work / "folder").string(), scene}, work);
+        EXPECT_TRUE(r.exited);
+        EXPECT_NE(r.code, 0);
+        EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+        EXPECT_NE(r.err.find(folder), std::string::npos) << r.err;
+        EXPECT_EQ(listDirectory(work), before);
+        EXPECT_TRUE(fs::is_empty(dir));
+        EXPECT_EQ(readFile(other), "earlier image") << folder;
+        fs::remove_all(dir);
+        fs::remove(other);
+    }
 }
 
 } // namespace

@@ -21,7 +21,7 @@ status=0
 for target in scene obj; do
     case $target in scene) maxlen=4096 ;; obj) maxlen=65536 ;; esac
     echo "== fuzz_$target for $SECONDS_PER_TARGET s"
-    if ! "$BUILD/fuzz_$target" "$BUILD/corpus/$target" -max_total_time="$SECONDS_PER_TARGET" \
+    if ! "$BUILD/tests/fuzz/fuzz_$target" "$BUILD/corpus/$target" -max_total_time="$SECONDS_PER_TARGET" \
         -max_len=$maxlen -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
         -artifact_prefix="$BUILD/artifacts/$target-" 2>"$BUILD/fuzz_$target.log"; then
         status=1
