@@ -11,6 +11,7 @@
 #include <set>
 #include <spawn.h>
 #include <sstream>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -85,8 +86,18 @@ RunResult runNori(const std::vector<std::string> &args, const fs::path &work) {
     std::vector<char *> argv;
     for (auto &a : argvStrings) argv.push_back(a.data());
     argv.push_back(nullptr);
+    // Bounded address space for the child (inherited through spawn): a few bytes of bad input
+    // must not make nori reserve gigabytes. Sanitizers reserve huge shadow mappings: no limit there.
+    struct rlimit saved {};
+    getrlimit(RLIMIT_AS, &saved);
+#if !defined(__SANITIZE_ADDRESS__)
+    struct rlimit limited = saved;
+    limited.rlim_cur = std::min<rlim_t>(saved.rlim_cur, rlim_t(1) << 30);
+    setrlimit(RLIMIT_AS, &limited);
+#endif
     pid_t pid = 0;
     int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    setrlimit(RLIMIT_AS, &saved);
     posix_spawn_file_actions_destroy(&actions);
     RunResult result;
     if (rc != 0) throw std::runtime_error(std::string("posix_spawn failed: ") + std::strerror(rc));
