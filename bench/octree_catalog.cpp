@@ -1,0 +1,123 @@
+#include "octree_catalog.h"
+#include <nori/object.h>
+#include <regex>
+#include <stdexcept>
+
+namespace nori::bench {
+
+std::string OctreeConfig::label() const {
+    if (useDefaults && maxDepth == 0) return "octree (defaults)";
+    return fmt::format("d={} l={} {} {} {}", maxDepth, leafSize, overlap, traversal, intersector);
+}
+
+bool OctreeCatalog::available() { return NoriObjectFactory::isRegistered(NoriObject::EAccel, "octree"); }
+
+std::unique_ptr<Accel> OctreeCatalog::create(const OctreeConfig &config) {
+    PropertyList props;
+    props.setLocation("<nori-bench>");
+    if (!config.useDefaults) {
+        props.setInteger("maxDepth", config.maxDepth);
+        props.setInteger("leafSize", config.leafSize);
+        props.setString("overlap", config.overlap);
+        props.setString("traversal", config.traversal);
+        props.setString("intersector", config.intersector);
+    }
+    std::unique_ptr<NoriObject> object = NoriObjectFactory::createInstance(NoriObject::EAccel, "octree", props);
+    object->activate();
+    return std::unique_ptr<Accel>(static_cast<Accel *>(object.release()));
+}
+
+bool OctreeCatalog::accepts(const OctreeConfig &config, std::string &error) {
+    try {
+        create(config);
+        return true;
+    } catch (const std::exception &e) {
+        error = e.what();
+        return false;
+    }
+}
+
+OctreeConfig OctreeCatalog::probeDefaults() {
+    // The octree's defaults, read from its description ("maxDepth=20, traversal=..." or
+    // similar); anything not found keeps a neutral value and matches no configuration.
+    OctreeConfig d;
+    d.useDefaults = true;
+    OctreeConfig empty;
+    empty.useDefaults = true;
+    std::string text = create(empty)->toString();
+    auto find = [&](const char *key) -> std::string {
+        std::smatch m;
+        std::regex re(std::string(key) + R"(\s*[=:]\s*\"?([A-Za-z0-9_.+-]+))", std::regex::icase);
+        return std::regex_search(text, m, re) ? m[1].str() : std::string();
+    };
+    std::string depth = find("maxDepth"), leaf = find("leafSize");
+    d.maxDepth = depth.empty() ? 0 : std::atoi(depth.c_str());
+    d.leafSize = leaf.empty() ? 0 : std::atoi(leaf.c_str());
+    d.overlap = find("overlap");
+    d.traversal = find("traversal");
+    d.intersector = find("intersector");
+    return d;
+}
+
+OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
+    if (!available()) return;
+    m_defaults = probeDefaults();
+
+    // Traversals: as listed, or seed and sorted next to the octree's default (fast exact) one.
+    std::vector<std::string> candidates = options.traversals;
+    bool listed = !candidates.empty();
+    if (!listed) {
+        candidates = {"seed", "sorted"};
+        if (!m_defaults.traversal.empty() && m_defaults.traversal != "seed" && m_defaults.traversal != "sorted")
+            candidates.push_back(m_defaults.traversal);
+    }
+    OctreeConfig probe;
+    probe.maxDepth = options.depths.front();
+    probe.leafSize = options.leafSizes.front();
+    probe.overlap = options.overlaps.front();
+    probe.intersector = options.intersectors.front();
+    for (const std::string &t : candidates) {
+        probe.traversal = t;
+        std::string error;
+        if (accepts(probe, error)) m_traversals.push_back(t);
+        else if (listed) throw std::invalid_argument(fmt::format("--traversals: the octree rejects '{}': {}", t, error));
+    }
+    // Every other list value once, so that a bad value fails before anything is measured.
+    for (int depth : options.depths)
+        for (int leaf : options.leafSizes)
+            for (const std::string &o : options.overlaps)
+                for (const std::string &i : options.intersectors) {
+                    OctreeConfig c = probe;
+                    c.maxDepth = depth;
+                    c.leafSize = leaf;
+                    c.overlap = o;
+                    c.intersector = i;
+                    c.traversal = m_traversals.empty() ? std::string() : m_traversals.front();
+                    std::string error;
+                    if (!m_traversals.empty() && !accepts(c, error))
+                        throw std::invalid_argument(fmt::format("the octree rejects {}: {}", c.label(), error));
+                }
+
+    if (options.defaultOnly) {
+        m_configs.push_back(m_defaults);
+        m_configs.back().isDefault = true;
+        return;
+    }
+    // Order: depth-major, so that the Markdown table reads like the seed's.
+    for (const std::string &o : options.overlaps)
+        for (int leaf : options.leafSizes)
+            for (int depth : options.depths)
+                for (const std::string &t : m_traversals)
+                    for (const std::string &i : options.intersectors) {
+                        OctreeConfig c;
+                        c.maxDepth = depth;
+                        c.leafSize = leaf;
+                        c.overlap = o;
+                        c.traversal = t;
+                        c.intersector = i;
+                        c.isDefault = c.sameSettings(m_defaults);
+                        m_configs.push_back(c);
+                    }
+}
+
+} // namespace nori::bench
