@@ -32,8 +32,6 @@ int runBench(const BenchOptions &options, const std::string &command) {
         limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                       size_t(options.threads));
 
-    if (!options.scene.empty() && !MeshSource::hasSceneParser())
-        throw std::invalid_argument("--scene: this build has no scene parser (main has no loadScene yet); use --mesh");
     OctreeCatalog catalog(options);
     if (!OctreeCatalog::available())
         std::fprintf(stderr, "[nori-bench] note: no 'octree' accel in this build; measuring brute force and Embree "

@@ -81,7 +81,7 @@ RunResult BenchRunner::runAccel(const std::string &accelName, Accel &accel, cons
         run.hasConfig = true;
         run.config = *config;
     }
-    for (const auto &mesh : input.meshes) accel.addMesh(mesh.get());
+    for (const Mesh *mesh : input.meshPointers()) accel.addMesh(mesh);
     accel.build();
     run.buildMs = accel.buildMilliseconds();
     run.stats = accel.statistics();
@@ -125,7 +125,7 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
     // Ray sets (not timed as part of any contender).
     auto genStart = std::chrono::steady_clock::now();
     std::unique_ptr<Camera> framing;
-    const Camera *camera = input.camera.get();
+    const Camera *camera = input.camera();
     if (camera) {
         result.camera = "scene";
     } else {
