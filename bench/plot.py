@@ -12,6 +12,7 @@ Writes into DIR (default: plots/):
 Charts 1 and 2 show the largest mesh. Several JSON files are merged (one mesh each, or arrays).
 """
 import json
+import math
 import os
 import sys
 
@@ -19,6 +20,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 plt.rcParams.update({"font.size": 11, "axes.titlesize": 12, "axes.grid": True, "grid.alpha": 0.3,
@@ -27,6 +29,13 @@ plt.rcParams.update({"font.size": 11, "axes.titlesize": 12, "axes.grid": True, "
 TRAVERSAL_MARKERS = ["o", "s", "^", "D", "v", "P", "X"]
 DEPTH_COLORS = plt.get_cmap("viridis")
 EMBREE_COLOR = "#d62728"
+
+
+def readable_log_y(ax):
+    """Log y axis labelled at 1, 2, 5 x 10^k in plain numbers."""
+    ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    ax.yaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
 
 
 def load(paths):
@@ -86,30 +95,43 @@ def speed_vs_accuracy(mesh, out):
     intersectors = ordered(r["intersector"] for r in runs)
     depth_color = {d: DEPTH_COLORS(0.1 + 0.75 * i / max(1, len(depths) - 1)) for i, d in enumerate(depths)}
     marker = {t: TRAVERSAL_MARKERS[i % len(TRAVERSAL_MARKERS)] for i, t in enumerate(traversals)}
-    smallest = 1.0
+
+    def rate(s):
+        return 100.0 * s.get("mismatches", 0) / max(1, s["rays"])  # percent
+
     for ax, name in zip(axes, ("primary", "diffuse")):
+        # Log x axis; exact contenders (rate 0) sit in a column one decade left of the smallest error.
+        rates = [rate(r[name]) for r in runs] + [rate(mesh["embree"][name])]
+        nonzero = [x for x in rates if x > 0]
+        zero_at = 10.0 ** (math.floor(math.log10(min(nonzero))) - 1) if nonzero else 1e-4
+        top = max(nonzero) if nonzero else zero_at * 100
+
+        def x_of(s):
+            return rate(s) if rate(s) > 0 else zero_at
+
         for r in runs:
             s = r[name]
-            rate = s["mismatches"] / max(1, s["rays"])
-            if rate > 0:
-                smallest = min(smallest, rate)
             filled = r["overlap"] == overlaps[0]
-            ax.scatter(rate, s["mrays_s"], s=70 if r["intersector"] == intersectors[0] else 40,
+            ax.scatter(x_of(s), s["mrays_s"], s=80 if r["intersector"] == intersectors[0] else 40,
                        marker=marker[r["traversal"]], color=depth_color[r["maxDepth"]],
                        facecolors=depth_color[r["maxDepth"]] if filled else "none",
-                       linewidths=1.6, zorder=3, alpha=0.9)
+                       linewidths=1.6, zorder=3, alpha=0.85)
         e = mesh["embree"][name]
-        ax.scatter(e.get("mismatches", 0) / max(1, e["rays"]), e["mrays_s"], marker="*", s=320, color=EMBREE_COLOR,
-                   edgecolors="black", zorder=4)
-        ax.annotate("Embree", (e.get("mismatches", 0) / max(1, e["rays"]), e["mrays_s"]), textcoords="offset points",
-                    xytext=(10, -4), color=EMBREE_COLOR, fontweight="bold")
-        ax.set_title(f"{name} rays ({e['rays']:,})")
-        ax.set_xlabel("mismatch rate vs Embree robust (0 = exact)")
-        ax.set_ylabel("Mrays/s")
+        ax.scatter(x_of(e), e["mrays_s"], marker="*", s=360, color=EMBREE_COLOR, edgecolors="black", zorder=4)
+        ax.annotate("Embree", (x_of(e), e["mrays_s"]), textcoords="offset points", xytext=(12, -4),
+                    color=EMBREE_COLOR, fontweight="bold")
+        ax.set_xscale("log")
         ax.set_yscale("log")
-    for ax in axes:
-        ax.set_xscale("symlog", linthresh=min(1e-5, smallest))
-        ax.set_xlim(left=-0.2 * min(1e-5, smallest))
+        ax.set_xlim(zero_at / 3, top * 3)
+        ax.axvspan(zero_at / 3, zero_at * 3, color="#2ca02c", alpha=0.07, zorder=0)
+        ticks = [zero_at] + [10.0 ** k for k in range(int(math.log10(zero_at)) + 1, int(math.ceil(math.log10(top * 3))))]
+        ax.set_xticks(ticks)
+        ax.set_xticklabels(["exact"] + [f"{t:g}%" for t in ticks[1:]])
+        ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+        ax.set_title(f"{name} rays ({e['rays']:,})")
+        ax.set_xlabel("mismatch rate vs Embree robust")
+        ax.set_ylabel("Mrays/s (log)")
+        readable_log_y(ax)
     handles = [Line2D([], [], marker=marker[t], linestyle="", color="gray", markersize=8, label=f"traversal {t}")
                for t in traversals]
     handles += [Line2D([], [], marker="o", linestyle="", color=depth_color[d], markersize=8, label=f"maxDepth {d}")
@@ -136,7 +158,7 @@ def depth_chart(mesh, out):
     intersectors = ordered(r["intersector"] for r in runs)
     styles = ["-", "--", ":", "-."]
     colors = plt.get_cmap("tab10")
-    fig, axes = plt.subplots(1, 3, figsize=(16, 5))
+    fig, axes = plt.subplots(1, 3, figsize=(16, 6.2))
     e = mesh["embree"]
 
     def pick(overlap, leaf, depth, traversal=None, intersector=None):
@@ -173,7 +195,11 @@ def depth_chart(mesh, out):
     for ax in axes:
         ax.set_xlabel("maxDepth")
         ax.set_xticks(depths)
-        ax.legend()
+        ax.set_xlim(min(depths) - 1, max(depths) + 1)
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2 if ax is axes[2] else 3, frameon=False)
+    axes[0].set_ylim(bottom=0)
+    axes[1].set_ylim(bottom=0)
+    readable_log_y(axes[2])
     fig.suptitle(f"Octree depth — {subtitle(mesh)}")
     fig.tight_layout(rect=(0, 0, 1, 0.95))
     fig.savefig(out)
@@ -184,7 +210,7 @@ def scaling_chart(meshes, out):
     meshes = sorted(meshes, key=lambda m: m["triangles"])
     tris = [m["triangles"] for m in meshes]
     reps = [representative(m) for m in meshes]
-    fig, axes = plt.subplots(1, 2, figsize=(13, 5))
+    fig, axes = plt.subplots(1, 2, figsize=(13, 6))
     axes[0].plot(tris, [m["embree"]["build_ms"] for m in meshes], "-*", color=EMBREE_COLOR, markersize=12,
                  label="Embree")
     have = [(t, r) for t, r in zip(tris, reps) if r]
@@ -198,17 +224,18 @@ def scaling_chart(meshes, out):
             axes[1].plot([t for t, _ in have], [r[name]["mrays_s"] for _, r in have], style, marker="o",
                          color="#1f77b4", label=f"octree {name}")
     axes[0].set_title("build time")
-    axes[0].set_ylabel("ms")
+    axes[0].set_ylabel("ms (log)")
     axes[1].set_title("throughput")
-    axes[1].set_ylabel("Mrays/s")
+    axes[1].set_ylabel("Mrays/s (log)")
     for ax in axes:
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("triangles")
-        ax.legend()
-        for t, m in zip(tris, meshes):
-            ax.annotate(short(m), (t, ax.get_ylim()[0]), textcoords="offset points", xytext=(2, 4), fontsize=8,
-                        rotation=90, color="dimgray")
+        ax.set_xlabel("triangles (log)")
+        ax.set_xticks(tris)
+        ax.set_xticklabels([f"{short(m)}\n{t / 1000:.0f}k" for t, m in zip(tris, meshes)], fontsize=9)
+        ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+        readable_log_y(ax)
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3, frameon=False)
     threads = ordered(m["threads"] for m in meshes)
     fig.suptitle(f"Scaling over {len(meshes)} meshes, {'/'.join(map(str, threads))} thread(s)")
     fig.tight_layout(rect=(0, 0, 1, 0.95))
