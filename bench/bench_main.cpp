@@ -44,6 +44,7 @@ int runBench(const BenchOptions &options, const std::string &command) {
                          return t;
                      }().c_str());
 
+    for (const std::string &note : catalog.skipped()) std::fprintf(stderr, "[nori-bench] note: %s\n", note.c_str());
     BenchRunner runner(options, catalog);
     std::vector<MeshResult> results;
     if (!options.scene.empty()) {

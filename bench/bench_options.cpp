@@ -64,7 +64,7 @@ std::vector<std::string> parseChoiceList(const std::string &option, const std::s
 
 BenchOptions OptionParser::parse(int argc, char **argv) {
     BenchOptions o;
-    std::set<std::string> given;
+    std::set<std::string> &given = o.given;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];
         auto value = [&]() -> std::string {

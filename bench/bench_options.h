@@ -2,6 +2,7 @@
 /// \brief Command line of nori-bench: what to load, which contenders to run, where to write.
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ struct BenchOptions {
     std::string jsonPath, markdownPath, plotsDir, artefactDir;
     std::string python = "/usr/bin/python3";
     bool help = false;
+    std::set<std::string> given;      ///< the options that appeared on the command line
+
+    bool wasGiven(const std::string &option) const { return given.count(option) != 0; }
 
     /// \brief Rays per set, as configured.
     size_t cameraRayCount() const { return size_t(width) * size_t(height) * size_t(spp); }

@@ -75,6 +75,7 @@ struct MeshResult {
     EmbreeResult embree;      ///< default (non-robust) flags: the speed peer
     EmbreeResult embreeRobust;  ///< RTC_SCENE_FLAG_ROBUST: the accuracy reference
     std::vector<RunResult> runs;
+    std::vector<std::string> notes;  ///< e.g. default list values the octree rejected
 };
 
 } // namespace nori::bench

@@ -96,6 +96,7 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
     result.threads = m_threads;
     result.loadMs = input.loadMs;
     result.repeats = m_options.repeats;
+    result.notes = m_catalog.skipped();
     std::vector<const Mesh *> meshes = input.meshPointers();
     MeshTable table(meshes);
 

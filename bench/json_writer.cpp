@@ -126,6 +126,11 @@ void emitMesh(Emitter &j, const MeshResult &m) {
     j.field("reference", "embree_robust");
     j.end('}');
     j.newline(1);
+    j.key("notes");
+    j.begin('[');
+    for (const std::string &n : m.notes) j.value(n);
+    j.end(']');
+    j.newline(1);
     j.key("embree");
     emitEmbree(j, m.embree, false);
     j.newline(1);

@@ -127,6 +127,8 @@ std::string MarkdownWriter::format(const std::vector<MeshResult> &results, const
                          "(primary {}, diffuse {}, shadow {}); median of {} run(s), interleaved with Embree.\n\n",
                          m.triangles, m.loadMs, m.threads, m.camera, m.width, m.height, m.spp, m.embree.sets[0].rays,
                          m.embree.sets[1].rays, m.embree.sets[2].rays, m.repeats);
+        for (const std::string &n : m.notes) s += "- Note: " + n + "\n";
+        if (!m.notes.empty()) s += "\n";
         std::vector<std::pair<std::string, int>> groups;
         for (const RunResult &r : m.runs) {
             if (r.accel != "octree" || !r.hasConfig) continue;

@@ -71,11 +71,9 @@ OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
         if (!m_defaults.traversal.empty() && m_defaults.traversal != "seed" && m_defaults.traversal != "sorted")
             candidates.push_back(m_defaults.traversal);
     }
-    OctreeConfig probe;
-    probe.maxDepth = options.depths.front();
-    probe.leafSize = options.leafSizes.front();
-    probe.overlap = options.overlaps.front();
-    probe.intersector = options.intersectors.front();
+    // Probe with the octree's defaults, changing one setting at a time.
+    OctreeConfig probe = m_defaults;
+    probe.useDefaults = false;
     for (const std::string &t : candidates) {
         probe.traversal = t;
         std::string error;
@@ -83,32 +81,51 @@ OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
         else if (listed) throw std::invalid_argument(fmt::format("--traversals: the octree rejects '{}': {}", t, error));
     }
     // Every other list value once, so that a bad value fails before anything is measured.
-    for (int depth : options.depths)
-        for (int leaf : options.leafSizes)
-            for (const std::string &o : options.overlaps)
-                for (const std::string &i : options.intersectors) {
-                    OctreeConfig c = probe;
-                    c.maxDepth = depth;
-                    c.leafSize = leaf;
-                    c.overlap = o;
-                    c.intersector = i;
-                    c.traversal = m_traversals.empty() ? std::string() : m_traversals.front();
-                    std::string error;
-                    if (!m_traversals.empty() && !accepts(c, error))
-                        throw std::invalid_argument(fmt::format("the octree rejects {}: {}", c.label(), error));
-                }
+    auto check = [&](const char *option, OctreeConfig c, const std::string &what) {
+        c.traversal = m_traversals.empty() ? std::string("sorted") : m_traversals.front();
+        std::string error;
+        if (accepts(c, error)) return true;
+        if (options.wasGiven(option))
+            throw std::invalid_argument(fmt::format("{}: the octree rejects {}: {}", option, what, error));
+        m_skipped.push_back(fmt::format("{} {} (default list) skipped: {}", option, what, error));
+        return false;
+    };
+    std::vector<int> depths, leaves;
+    std::vector<std::string> overlaps, intersectors;
+    for (int d : options.depths) {
+        OctreeConfig c = probe;
+        c.maxDepth = d;
+        if (check("--depths", c, fmt::format("maxDepth {}", d))) depths.push_back(d);
+    }
+    for (int l : options.leafSizes) {
+        OctreeConfig c = probe;
+        c.leafSize = l;
+        if (check("--leaf-sizes", c, fmt::format("leafSize {}", l))) leaves.push_back(l);
+    }
+    for (const std::string &o : options.overlaps) {
+        OctreeConfig c = probe;
+        c.overlap = o;
+        if (check("--overlaps", c, fmt::format("overlap {}", o))) overlaps.push_back(o);
+    }
+    for (const std::string &i : options.intersectors) {
+        OctreeConfig c = probe;
+        c.intersector = i;
+        if (check("--intersectors", c, fmt::format("intersector {}", i))) intersectors.push_back(i);
+    }
 
     if (options.defaultOnly) {
         m_configs.push_back(m_defaults);
         m_configs.back().isDefault = true;
         return;
     }
-    // Order: depth-major, so that the Markdown table reads like the seed's.
-    for (const std::string &o : options.overlaps)
-        for (int leaf : options.leafSizes)
-            for (int depth : options.depths)
+    // Order: overlap, leaf size, depth, traversal, intersector (the Markdown table reads
+    // like the seed's: one column per depth).
+    bool haveDefault = false;
+    for (const std::string &o : overlaps)
+        for (int leaf : leaves)
+            for (int depth : depths)
                 for (const std::string &t : m_traversals)
-                    for (const std::string &i : options.intersectors) {
+                    for (const std::string &i : intersectors) {
                         OctreeConfig c;
                         c.maxDepth = depth;
                         c.leafSize = leaf;
@@ -116,8 +133,15 @@ OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
                         c.traversal = t;
                         c.intersector = i;
                         c.isDefault = c.sameSettings(m_defaults);
+                        haveDefault = haveDefault || c.isDefault;
                         m_configs.push_back(c);
                     }
+    // The octree's defaults are what the renderer uses: always measure them.
+    if (!haveDefault && !m_traversals.empty()) {
+        OctreeConfig d = m_defaults;
+        d.isDefault = true;
+        m_configs.push_back(d);
+    }
 }
 
 } // namespace nori::bench
