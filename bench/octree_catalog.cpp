@@ -80,6 +80,11 @@ OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
         if (accepts(probe, error)) m_traversals.push_back(t);
         else if (listed) throw std::invalid_argument(fmt::format("--traversals: the octree rejects '{}': {}", t, error));
     }
+    if (options.defaultOnly) {  // the lists do not matter
+        m_configs.push_back(m_defaults);
+        m_configs.back().isDefault = true;
+        return;
+    }
     // Every other list value once, so that a bad value fails before anything is measured.
     auto check = [&](const char *option, OctreeConfig c, const std::string &what) {
         c.traversal = m_traversals.empty() ? std::string("sorted") : m_traversals.front();
@@ -113,11 +118,6 @@ OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
         if (check("--intersectors", c, fmt::format("intersector {}", i))) intersectors.push_back(i);
     }
 
-    if (options.defaultOnly) {
-        m_configs.push_back(m_defaults);
-        m_configs.back().isDefault = true;
-        return;
-    }
     // Order: overlap, leaf size, depth, traversal, intersector (the Markdown table reads
     // like the seed's: one column per depth).
     bool haveDefault = false;

@@ -29,6 +29,7 @@ plt.rcParams.update({"font.size": 11, "axes.titlesize": 12, "axes.grid": True, "
 TRAVERSAL_MARKERS = ["o", "s", "^", "D", "v", "P", "X"]
 DEPTH_COLORS = plt.get_cmap("viridis")
 EMBREE_COLOR = "#d62728"
+TRAVERSAL_COLORS = ["#ff7f0e", "#9467bd", "#2ca02c", "#8c564b", "#17becf"]
 
 
 def readable_log_y(ax):
@@ -36,6 +37,21 @@ def readable_log_y(ax):
     ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
     ax.yaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
     ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+
+
+def steady_mrays(mesh, run, name):
+    """Throughput with the machine's drift removed: Embree's median over the whole session times
+    the contender's ratio to the Embree runs interleaved with it. On a busy machine this is far
+    steadier than the raw median (which depends on when the contender happened to run)."""
+    ratio = run[name].get("ratio_vs_embree")
+    if not ratio:
+        return run[name]["mrays_s"]
+    return mesh["embree"][name]["mrays_s"] * ratio
+
+
+def steady_ms(mesh, run, name):
+    m = steady_mrays(mesh, run, name)
+    return run[name]["rays"] / (m * 1e3) if m > 0 else float("nan")
 
 
 def load(paths):
@@ -77,7 +93,7 @@ def representative(mesh):
     if defaults:
         return defaults[0]
     exact = [r for r in runs if r.get("traversal") != "seed"] or runs
-    return max(exact, key=lambda r: r["primary"]["mrays_s"])
+    return max(exact, key=lambda r: r["primary"].get("ratio_vs_embree", r["primary"]["mrays_s"]))
 
 
 def subtitle(mesh):
@@ -112,7 +128,7 @@ def speed_vs_accuracy(mesh, out):
         for r in runs:
             s = r[name]
             filled = r["overlap"] == overlaps[0]
-            ax.scatter(x_of(s), s["mrays_s"], s=80 if r["intersector"] == intersectors[0] else 40,
+            ax.scatter(x_of(s), steady_mrays(mesh, r, name), s=80 if r["intersector"] == intersectors[0] else 40,
                        marker=marker[r["traversal"]], color=depth_color[r["maxDepth"]],
                        facecolors=depth_color[r["maxDepth"]] if filled else "none",
                        linewidths=1.6, zorder=3, alpha=0.85)
@@ -130,7 +146,7 @@ def speed_vs_accuracy(mesh, out):
         ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
         ax.set_title(f"{name} rays ({e['rays']:,})")
         ax.set_xlabel("mismatch rate vs Embree robust")
-        ax.set_ylabel("Mrays/s (log)")
+        ax.set_ylabel("Mrays/s (Embree median × ratio, log)")
         readable_log_y(ax)
     handles = [Line2D([], [], marker=marker[t], linestyle="", color="gray", markersize=8, label=f"traversal {t}")
                for t in traversals]
@@ -172,6 +188,8 @@ def depth_chart(mesh, out):
             label = f"overlap {overlap}" + (f", leaf {leaf}" if len(leaves) > 1 else "")
             pts = [(d, pick(overlap, leaf, d)) for d in depths]
             pts = [(d, r) for d, r in pts if r]
+            if not pts:
+                continue
             style = dict(linestyle=styles[(oi + 2 * li) % len(styles)], marker="o", color=colors(oi + 2 * li))
             axes[0].plot([d for d, _ in pts], [r["build_ms"] for _, r in pts], label=label, **style)
             axes[1].plot([d for d, _ in pts], [r["bytes"] / 2**20 for _, r in pts], label=label, **style)
@@ -179,9 +197,11 @@ def depth_chart(mesh, out):
                 x = intersectors[0]
                 tp = [(d, pick(overlap, leaf, d, t, x)) for d in depths]
                 tp = [(d, r) for d, r in tp if r]
-                axes[2].plot([d for d, _ in tp], [r["primary"]["ms"] for _, r in tp],
+                if not tp:
+                    continue
+                axes[2].plot([d for d, _ in tp], [steady_ms(mesh, r, "primary") for _, r in tp],
                              linestyle=styles[(oi + 2 * li) % len(styles)], marker=TRAVERSAL_MARKERS[ti],
-                             color=colors(3 + ti), label=f"{t}, {label}")
+                             color=TRAVERSAL_COLORS[ti % len(TRAVERSAL_COLORS)], label=f"{t}, {label}")
     axes[0].axhline(e["build_ms"], color=EMBREE_COLOR, linestyle="--", label="Embree")
     axes[1].axhline(e["bytes"] / 2**20, color=EMBREE_COLOR, linestyle="--", label="Embree")
     axes[2].axhline(e["primary"]["ms"], color=EMBREE_COLOR, linestyle="--", label="Embree")
@@ -190,7 +210,7 @@ def depth_chart(mesh, out):
     axes[1].set_title("memory")
     axes[1].set_ylabel("MiB")
     axes[2].set_title(f"render time, {e['primary']['rays']:,} primary rays ({intersectors[0] if intersectors else ''})")
-    axes[2].set_ylabel("ms (log)")
+    axes[2].set_ylabel("ms (Embree median / ratio, log)")
     axes[2].set_yscale("log")
     for ax in axes:
         ax.set_xlabel("maxDepth")
@@ -221,12 +241,13 @@ def scaling_chart(meshes, out):
         axes[1].plot(tris, [m["embree"][name]["mrays_s"] for m in meshes], style, marker="*", markersize=11,
                      color=EMBREE_COLOR, label=f"Embree {name}")
         if have:
-            axes[1].plot([t for t, _ in have], [r[name]["mrays_s"] for _, r in have], style, marker="o",
+            axes[1].plot([t for t, _ in have], [steady_mrays(m, r, name) for (t, r), m in
+                                                zip(have, [m for m, r in zip(meshes, reps) if r])], style, marker="o",
                          color="#1f77b4", label=f"octree {name}")
     axes[0].set_title("build time")
     axes[0].set_ylabel("ms (log)")
     axes[1].set_title("throughput")
-    axes[1].set_ylabel("Mrays/s (log)")
+    axes[1].set_ylabel("Mrays/s (octree: Embree × ratio, log)")
     for ax in axes:
         ax.set_xscale("log")
         ax.set_yscale("log")
