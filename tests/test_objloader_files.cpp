@@ -103,6 +103,16 @@ TEST(ObjLoaderFile, MissingFile) {
     EXPECT_EQ(msg, path + ": cannot open: No such file or directory");
 }
 
+TEST(ObjLoaderFile, UnreadableFile) {
+    if (geteuid() == 0) GTEST_SKIP() << "root can read files without read permission";
+    TempDir dir;
+    std::string path = dir.file("secret.obj");
+    writeFile(path, "v 0 0 0\n");
+    fs::permissions(path, fs::perms::none);
+    std::string msg = errorOf([&] { loadObjFile(path); });
+    EXPECT_EQ(msg, path + ": cannot open: Permission denied");
+}
+
 TEST(ObjLoaderFile, DirectoryInsteadOfFile) {
     TempDir dir;
     std::string path = dir.file("sub.obj");
