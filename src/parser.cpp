@@ -68,11 +68,22 @@ public:
     }
 
     std::unique_ptr<NoriObject> parse() {
+        // A NUL byte never occurs in XML text: say "binary" instead of a confusing parse error.
+        size_t nul = m_text.find('\0');
+        if (nul != std::string::npos)
+            throw NoriException("{}: binary data (a NUL byte), not an XML scene file", where(ptrdiff_t(nul)));
         pugi::xml_document doc;
         pugi::xml_parse_result result = doc.load_buffer(m_text.data(), m_text.size(), pugi::parse_default);
+        // pugixml reports "no document element" at the end of the file; line 1 is more useful.
+        if (result.status == pugi::status_no_document_element)
+            throw NoriException("{}:1: not an XML scene file (no XML element found)", m_path);
         if (!result) throw NoriException("{}: XML error: {}", where(result.offset), result.description());
         pugi::xml_node root = doc.document_element();
         if (!root) throw NoriException("{}:1: the file has no XML element", m_path);
+        // pugixml accepts several top-level elements; a scene file has exactly one.
+        for (pugi::xml_node extra = root.next_sibling(); extra; extra = extra.next_sibling())
+            if (extra.type() == pugi::node_element)
+                fail(extra, fmt::format("a second top-level element <{}> (a scene file has one root)", extra.name()));
         PropertyList unusedProps;
         Transform unusedTransform;
         std::unique_ptr<NoriObject> object = parseElement(root, Tag::Unknown, unusedProps, unusedTransform);
@@ -117,6 +128,8 @@ private:
         if (begin < end && *begin == '+') ++begin;
         float value = 0.0f;
         auto [ptr, ec] = std::from_chars(begin, end, value);
+        if (ec == std::errc::result_out_of_range && ptr == end)
+            fail(node, fmt::format("{} '{}' is out of the float range", what, text));
         if (ec != std::errc() || ptr != end || begin == end)
             fail(node, fmt::format("{} '{}' is not a number", what, text));
         if (!std::isfinite(value)) fail(node, fmt::format("{} '{}' is not a finite number", what, text));
@@ -230,7 +243,15 @@ private:
             fail(node, fmt::format("property <{}> must be inside an object element", name));
         }
 
-        if (info.tag == Tag::Object) return parseObject(node, info.classType);
+        if (info.tag == Tag::Object) {
+            // Objects nest by recursion: bound the depth so that a hostile file cannot overflow the stack.
+            if (m_depth >= MaxObjectDepth)
+                fail(node, fmt::format("objects nested more than {} deep", MaxObjectDepth));
+            ++m_depth;
+            std::unique_ptr<NoriObject> object = parseObject(node, info.classType);
+            --m_depth;
+            return object;
+        }
         if (isTransformOperation(info.tag)) {
             parentTransform = parseTransformOperation(node, info.tag) * parentTransform;
             return nullptr;
@@ -342,6 +363,8 @@ private:
     std::string m_text;
     const SceneOverrides &m_overrides;
     std::vector<size_t> m_lineStarts;
+    static constexpr int MaxObjectDepth = 64;
+    int m_depth = 0;
 };
 
 /// Read the whole file, with clear messages for the usual ways this fails.
