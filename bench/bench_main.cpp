@@ -16,6 +16,13 @@ using namespace nori::bench;
 
 namespace {
 
+/// Error messages are printed on one line.
+std::string oneLine(std::string text) {
+    for (char &c : text)
+        if (c == '\n' || c == '\r') c = ' ';
+    return text;
+}
+
 std::string commandLine(int argc, char **argv) {
     std::string s;
     for (int i = 0; i < argc; ++i) {
@@ -84,7 +91,7 @@ int main(int argc, char **argv) {
     try {
         options = OptionParser::parse(argc, argv);
     } catch (const std::invalid_argument &e) {
-        std::fprintf(stderr, "nori-bench: %s\n", e.what());
+        std::fprintf(stderr, "nori-bench: %s\n", oneLine(e.what()).c_str());
         return 2;
     }
     if (options.help) {
@@ -94,10 +101,10 @@ int main(int argc, char **argv) {
     try {
         return runBench(options, commandLine(argc, argv));
     } catch (const std::invalid_argument &e) {
-        std::fprintf(stderr, "nori-bench: %s\n", e.what());
+        std::fprintf(stderr, "nori-bench: %s\n", oneLine(e.what()).c_str());
         return 2;
     } catch (const std::exception &e) {
-        std::fprintf(stderr, "nori-bench: error: %s\n", e.what());
+        std::fprintf(stderr, "nori-bench: error: %s\n", oneLine(e.what()).c_str());
         return 1;
     }
 }
