@@ -1,63 +1,56 @@
 /// Brute-force accelerator: tests every triangle. Reference and baseline only.
-#include <nori/accel.h>
+#include <nori/triangle.h>
 
 namespace nori {
 
-namespace {
-/// Möller & Trumbore 1997, "Fast, Minimum Storage Ray/Triangle Intersection".
-bool intersectTriangleMT(const Ray3f &ray, const Point3f &p0, const Point3f &p1, const Point3f &p2, float maxt,
-                         float &t, float &u, float &v) {
-    Vector3f e1 = p1 - p0, e2 = p2 - p0;
-    Vector3f pvec = ray.d.cross(e2);
-    float det = e1.dot(pvec);
-    if (det == 0.0f) return false;
-    float invDet = 1.0f / det;
-    Vector3f tvec = ray.o - p0;
-    u = tvec.dot(pvec) * invDet;
-    if (u < 0.0f || u > 1.0f) return false;
-    Vector3f qvec = tvec.cross(e1);
-    v = ray.d.dot(qvec) * invDet;
-    if (v < 0.0f || u + v > 1.0f) return false;
-    t = e2.dot(qvec) * invDet;
-    return t >= ray.mint && t <= maxt;
-}
-} // namespace
-
+/// \brief `<accel type="brute">`: one leaf holding every triangle, tested with the same
+/// TriangleStore kernels as the octree's leaves. Property: `intersector` (mt | watertight).
 class BruteAccel : public Accel {
 public:
-    explicit BruteAccel(const PropertyList &) {}
+    explicit BruteAccel(const PropertyList &props) : m_intersector(parseIntersector(props, "watertight")) {}
 
     bool intersect(const Ray3f &ray, Hit &hit) const override {
-        bool found = false;
-        float maxt = ray.maxt;
-        for (size_t m = 0; m < m_meshes.size(); ++m) {
-            const Mesh *mesh = m_meshes[m];
-            for (uint32_t f = 0; f < mesh->triangleCount(); ++f) {
-                float t, u, v;
-                if (intersectTriangleMT(ray, mesh->vertex(f, 0), mesh->vertex(f, 1), mesh->vertex(f, 2), maxt, t, u, v)) {
-                    maxt = t;
-                    hit = Hit{t, u, v, m_offsets[m] + f};
-                    found = true;
-                }
-            }
-        }
-        return found;
+        Hit best;
+        best.t = ray.maxt;
+        if (!m_triangles.intersect(TriangleRay(ray), 0, uint32_t(m_triangles.size()), best)) return false;
+        hit = best;
+        return true;
     }
 
     bool occluded(const Ray3f &ray) const override {
-        for (const Mesh *mesh : m_meshes)
-            for (uint32_t f = 0; f < mesh->triangleCount(); ++f) {
-                float t, u, v;
-                if (intersectTriangleMT(ray, mesh->vertex(f, 0), mesh->vertex(f, 1), mesh->vertex(f, 2), ray.maxt, t, u, v))
-                    return true;
-            }
-        return false;
+        return m_triangles.occluded(TriangleRay(ray), 0, uint32_t(m_triangles.size()), ray.maxt);
     }
 
-    std::string toString() const override { return "BruteAccel[]"; }
+    std::vector<AccelStat> statistics() const override {
+        std::vector<AccelStat> stats = Accel::statistics();
+        stats.push_back({"bytes", double(m_triangles.bytes()), true});
+        return stats;
+    }
+
+    std::string toString() const override {
+        return fmt::format("BruteAccel[intersector={}]", intersectorName(m_intersector));
+    }
 
 protected:
-    void buildImpl() override {}
+    void buildImpl() override {
+        // Same input rule as the octree: triangles with a non-finite corner are left out.
+        std::vector<std::array<Point3f, 3>> vertices(triangleCount());
+        std::vector<uint32_t> prims;
+        prims.reserve(triangleCount());
+        for (size_t m = 0; m < m_meshes.size(); ++m)
+            for (uint32_t f = 0; f < m_meshes[m]->triangleCount(); ++f) {
+                uint32_t prim = m_offsets[m] + f;
+                auto &v = vertices[prim];
+                for (int k = 0; k < 3; ++k) v[k] = m_meshes[m]->vertex(f, k);
+                if (v[0].allFinite() && v[1].allFinite() && v[2].allFinite()) prims.push_back(prim);
+            }
+        m_triangles.reset(m_intersector, prims.size());
+        m_triangles.setLeaf(0, prims.data(), uint32_t(prims.size()), vertices);
+    }
+
+private:
+    Intersector m_intersector;
+    TriangleStore m_triangles;
 };
 
 NORI_REGISTER_CLASS(BruteAccel, "brute", EAccel);

@@ -150,7 +150,8 @@ private:
             p = skipSpace(p, eol);
             if (p == eol || *p == '#') {
                 if (i < required)
-                    fail(fmt::format("'{}' statement needs {} coordinates, found {}", stmt, required, i));
+                    fail(fmt::format("'{}' statement needs {} coordinate{}, found {}", stmt, required,
+                                     required == 1 ? "" : "s", i));
                 out[i] = 0.0f;
                 continue;
             }

@@ -1,0 +1,82 @@
+/// \file triangle.h
+/// \brief Ray/triangle intersectors (Möller–Trumbore, watertight) and the precomputed
+/// triangle store that the octree leaves and the brute-force accel both test.
+///
+/// All arithmetic lives in src/triangle.cpp, compiled without floating-point contraction: the
+/// watertight test needs `a*b - c*d` evaluated without a fused multiply-add (an FMA rounds the
+/// two products differently, so the edge functions of two triangles sharing an edge would no
+/// longer be exact negatives), and every accelerator must get bit-identical results from the
+/// same store (so that ties and near-ties resolve the same way in brute force and octree).
+#pragma once
+
+#include <nori/accel.h>
+#include <array>
+#include <string>
+#include <vector>
+
+namespace nori {
+
+/// \brief Which ray/triangle test a store runs.
+enum class Intersector {
+    MT,          ///< Möller & Trumbore 1997; fast, may leak through shared edges
+    Watertight,  ///< Woop, Benthin & Wald 2013 (JCGT 2(1)); no leaks through shared edges/vertices
+};
+
+/// \brief Parse "mt" / "watertight"; throws through \p props.fail for anything else.
+Intersector parseIntersector(const PropertyList &props, const std::string &defaultValue);
+/// \brief "mt" or "watertight".
+const char *intersectorName(Intersector kind);
+
+/// \brief Per-ray constants of both intersectors, computed once per query.
+struct TriangleRay {
+    float o[3], d[3];
+    float mint;
+    // Watertight: kz is the dominant axis of d; (kx, ky) the other two, swapped when d[kz] < 0
+    // to keep the winding; the shear maps d to (0, 0, 1) in (kx, ky, kz) coordinates.
+    int kx, ky, kz;
+    float sx, sy, sz;
+
+    explicit TriangleRay(const Ray3f &ray);
+};
+
+/// \brief Triangles of all meshes, copied in the order the accelerator's leaves visit them.
+///
+/// A leaf of n triangles starting at reference `begin` is stored structure-of-arrays: nine
+/// rows of n floats at `9 * begin` (MT: v0, e1 = v1 - v0, e2 = v2 - v0; watertight: v0, v1,
+/// v2; each row x, y, z), so SIMD kernels load up to 16 triangles with masked loads and no
+/// padding, plus the global triangle id of each reference.
+class TriangleStore {
+public:
+    /// \brief Allocate \p refs triangle references for intersector \p kind.
+    void reset(Intersector kind, size_t refs);
+    /// \brief Write the leaf [begin, begin + n) from the global ids \p prims (thread-safe for
+    /// disjoint leaves). \p vertices holds the three corners of every global triangle.
+    void setLeaf(uint32_t begin, const uint32_t *prims, uint32_t n,
+                 const std::vector<std::array<Point3f, 3>> &vertices);
+
+    /// \brief Closest hit among the leaf's triangles with t in [ray.mint, best.t]; a hit at
+    /// exactly best.t wins only with a lower triangle id (deterministic ties). Updates \p best.
+    bool intersect(const TriangleRay &ray, uint32_t begin, uint32_t n, Hit &best) const;
+    /// \brief Is any triangle of the leaf hit with t in [ray.mint, maxt]?
+    bool occluded(const TriangleRay &ray, uint32_t begin, uint32_t n, float maxt) const;
+
+    Intersector kind() const { return m_kind; }
+    size_t size() const { return m_prims.size(); }
+    /// \brief Bytes owned (triangle data and ids).
+    size_t bytes() const { return m_data.capacity() * sizeof(float) + m_prims.capacity() * sizeof(uint32_t); }
+
+private:
+    Intersector m_kind = Intersector::Watertight;
+    std::vector<float> m_data;      ///< 9 floats per reference, SoA per leaf
+    std::vector<uint32_t> m_prims;  ///< global triangle id per reference
+};
+
+/// \brief Scalar Möller–Trumbore on precomputed (v0, e1, e2); the reference for the SIMD kernel
+/// (same operations in the same order, so both give bit-identical results).
+bool intersectMT(const TriangleRay &ray, const float v0[3], const float e1[3], const float e2[3], float maxt,
+                 float &t, float &u, float &v);
+/// \brief Scalar watertight test on the three corners; reference for the SIMD kernel.
+bool intersectWatertight(const TriangleRay &ray, const float p0[3], const float p1[3], const float p2[3],
+                         float maxt, float &t, float &u, float &v);
+
+} // namespace nori

@@ -1,0 +1,80 @@
+// Octree accelerator: properties, dispatch and statistics.
+#include <nori/octree.h>
+
+namespace nori {
+
+namespace {
+OctreeAccel::Traversal parseTraversal(const PropertyList &props) {
+    std::string name = props.getString("traversal", "simd");
+    if (name == "seed") return OctreeAccel::Traversal::Seed;
+    if (name == "sorted") return OctreeAccel::Traversal::Sorted;
+    if (name == "simd") return OctreeAccel::Traversal::Simd;
+    props.fail("traversal", fmt::format("unknown traversal '{}' (allowed: seed, sorted, simd)", name));
+}
+
+OctreeAccel::Overlap parseOverlap(const PropertyList &props) {
+    std::string name = props.getString("overlap", "exact");
+    if (name == "bbox") return OctreeAccel::Overlap::BBox;
+    if (name == "exact") return OctreeAccel::Overlap::Exact;
+    props.fail("overlap", fmt::format("unknown overlap test '{}' (allowed: bbox, exact)", name));
+}
+
+const char *traversalName(OctreeAccel::Traversal t) {
+    switch (t) {
+    case OctreeAccel::Traversal::Seed: return "seed";
+    case OctreeAccel::Traversal::Sorted: return "sorted";
+    default: return "simd";
+    }
+}
+} // namespace
+
+OctreeAccel::OctreeAccel(const PropertyList &props) {
+    m_maxDepth = props.getInteger("maxDepth", 16);
+    if (m_maxDepth < 0 || m_maxDepth > kMaxDepthLimit)
+        props.fail("maxDepth", fmt::format("maxDepth must be in [0, {}], got {}", kMaxDepthLimit, m_maxDepth));
+    m_leafSize = props.getInteger("leafSize", 8);
+    if (m_leafSize < 1) props.fail("leafSize", fmt::format("leafSize must be at least 1, got {}", m_leafSize));
+    m_overlap = parseOverlap(props);
+    m_traversal = parseTraversal(props);
+    m_intersector = parseIntersector(props, "watertight");
+}
+
+bool OctreeAccel::intersect(const Ray3f &ray, Hit &hit) const {
+    if (m_nodes.empty()) return false;  // not built
+    switch (m_traversal) {
+    case Traversal::Seed: return intersectSeed(ray, hit);
+    case Traversal::Sorted: return intersectSorted(ray, hit);
+    default: return intersectSimd(ray, hit);
+    }
+}
+
+bool OctreeAccel::occluded(const Ray3f &ray) const {
+    // Any hit: the visiting order only changes speed, so seed and sorted share one traversal.
+    if (m_nodes.empty()) return false;
+    return m_traversal == Traversal::Simd ? occludedSimd(ray) : occludedSorted(ray);
+}
+
+size_t OctreeAccel::bytes() const { return m_nodes.capacity() * sizeof(OctreeNode) + m_triangles.bytes(); }
+
+std::vector<AccelStat> OctreeAccel::statistics() const {
+    std::vector<AccelStat> stats = Accel::statistics();
+    size_t filled = m_stats.leafNodes - m_stats.emptyLeaves;
+    stats.push_back({"internal_nodes", double(m_stats.internalNodes), true});
+    stats.push_back({"leaf_nodes", double(m_stats.leafNodes), true});
+    stats.push_back({"empty_leaves", double(m_stats.emptyLeaves), true});
+    stats.push_back({"avg_tris_per_leaf", filled ? double(m_stats.refs) / double(filled) : 0.0, false});
+    stats.push_back({"max_depth_reached", double(m_stats.maxDepthReached), true});
+    stats.push_back({"triangle_refs", double(m_stats.refs), true});
+    stats.push_back({"bytes", double(bytes()), true});
+    return stats;
+}
+
+std::string OctreeAccel::toString() const {
+    return fmt::format("OctreeAccel[maxDepth={}, leafSize={}, overlap={}, traversal={}, intersector={}]", m_maxDepth,
+                       m_leafSize, m_overlap == Overlap::Exact ? "exact" : "bbox", traversalName(m_traversal),
+                       intersectorName(m_intersector));
+}
+
+NORI_REGISTER_CLASS(OctreeAccel, "octree", EAccel);
+
+} // namespace nori

@@ -1,0 +1,344 @@
+// Octree traversals: simd (default, exact), sorted (exact), seed (inexact, for comparison).
+#include <nori/octree.h>
+#include <algorithm>
+#include <cmath>
+
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
+#include <immintrin.h>
+#define NORI_OCTREE_AVX512 1
+#endif
+
+namespace nori {
+
+namespace {
+
+/// Child slab distances are widened by this relative amount (entry rounded down, exit up),
+/// which covers the rounding of (plane - origin) * (1 / d) (Ize 2013, "Robust BVH Ray
+/// Traversal"): a box is never culled for a ray that touches it.
+constexpr float kSlabEps = 0x1p-20f;
+
+/// Enough for the deepest tree: at most seven siblings wait per level.
+constexpr int kStackSize = 8 * (OctreeAccel::kMaxDepthLimit + 1);
+
+/// Per-ray data of the scalar child box test.
+struct SlabRay {
+    float o[3], rcpNear[3], rcpFar[3];
+    int neg[3];  ///< 1 where the direction's sign bit is set: the entry plane is the box's upper bound
+    unsigned octant;
+
+    explicit SlabRay(const Ray3f &ray) {
+        octant = 0;
+        for (int a = 0; a < 3; ++a) {
+            o[a] = ray.o[a];
+            neg[a] = std::signbit(ray.d[a]) ? 1 : 0;
+            rcpNear[a] = ray.dRcp[a] * (1.0f - kSlabEps);
+            rcpFar[a] = ray.dRcp[a] * (1.0f + kSlabEps);
+            octant |= unsigned(neg[a]) << a;
+        }
+    }
+
+    /// Entry distance into child \p c of \p node if the ray meets it within [mint, maxt].
+    /// A NaN (origin on a slab plane of a direction component that is zero) never narrows
+    /// the interval.
+    bool hit(const OctreeNode &node, int c, float mint, float maxt, float &tnear) const {
+        float t0 = mint, t1 = maxt;
+        for (int a = 0; a < 3; ++a) {
+            float lo = node.box[a][c + 8 * neg[a]], hi = node.box[a][c + 8 * (1 - neg[a])];
+            float tn = (lo - o[a]) * rcpNear[a], tf = (hi - o[a]) * rcpFar[a];
+            t0 = tn > t0 ? tn : t0;
+            t1 = tf < t1 ? tf : t1;
+        }
+        tnear = t0;
+        return t0 <= t1;
+    }
+};
+
+struct StackEntry {
+    uint32_t child, count;  ///< as in OctreeNode: count 0 = inner node
+    float tnear;
+};
+
+#if NORI_OCTREE_AVX512
+/// Permutation tables: lane j < 8 gets the entry plane of child j ^ octant, lane 8 + j its
+/// exit plane, so the lanes come out in the ray's front-to-back octant order.
+struct PermTable {
+    alignas(64) int idx[8][2][16];
+    PermTable() {
+        for (int oct = 0; oct < 8; ++oct)
+            for (int neg = 0; neg < 2; ++neg)
+                for (int j = 0; j < 8; ++j) {
+                    int c = j ^ oct;
+                    idx[oct][neg][j] = neg ? 8 + c : c;
+                    idx[oct][neg][8 + j] = neg ? c : 8 + c;
+                }
+    }
+};
+const PermTable kPerm;
+
+/// Per-ray data of the 8-box AVX-512 test. Exit lanes are negated so that one max
+/// accumulates entry distances (lanes 0-7) and minus exit distances (lanes 8-15) at once.
+struct SimdRay {
+    __m512 org[3], scale[3];
+    __m512i perm[3];
+    unsigned octant;
+
+    explicit SimdRay(const SlabRay &s) : octant(s.octant) {
+        for (int a = 0; a < 3; ++a) {
+            org[a] = _mm512_set1_ps(s.o[a]);
+            scale[a] = _mm512_mask_blend_ps(0xFF00, _mm512_set1_ps(s.rcpNear[a]), _mm512_set1_ps(-s.rcpFar[a]));
+            perm[a] = _mm512_load_si512(kPerm.idx[octant][s.neg[a]]);
+        }
+    }
+    static __m512 interval(float mint, float maxt) {
+        return _mm512_mask_blend_ps(0xFF00, _mm512_set1_ps(mint), _mm512_set1_ps(-maxt));
+    }
+    /// Bit j set: child j ^ octant is entered within the interval, at tnear[j].
+    unsigned test(const OctreeNode &node, __m512 interval, float tnear[8]) const {
+        __m512 acc = interval;
+        for (int a = 0; a < 3; ++a) {
+            __m512 planes = _mm512_permutexvar_ps(perm[a], _mm512_load_ps(node.box[a]));
+            __m512 t = _mm512_mul_ps(_mm512_sub_ps(planes, org[a]), scale[a]);
+            acc = _mm512_max_ps(t, acc);  // vmaxps returns the second operand on NaN
+        }
+        __m256 entry = _mm512_castps512_ps256(acc);
+        __m256 exit = _mm256_xor_ps(_mm512_extractf32x8_ps(acc, 1), _mm256_set1_ps(-0.0f));
+        _mm256_storeu_ps(tnear, entry);
+        return _mm256_cmp_ps_mask(entry, exit, _CMP_LE_OQ);
+    }
+};
+#else
+/// Portable stand-in with the same lane order.
+struct SimdRay {
+    const SlabRay &slab;
+    unsigned octant;
+    explicit SimdRay(const SlabRay &s) : slab(s), octant(s.octant) {}
+    struct Interval { float mint, maxt; };
+    static Interval interval(float mint, float maxt) { return {mint, maxt}; }
+    unsigned test(const OctreeNode &node, Interval iv, float tnear[8]) const {
+        unsigned mask = 0;
+        for (int j = 0; j < 8; ++j)
+            if (slab.hit(node, int(j ^ octant), iv.mint, iv.maxt, tnear[j])) mask |= 1u << j;
+        return mask;
+    }
+};
+#endif
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// simd: one 8-box test per node, children in the ray's octant order. For the midpoint split,
+// child index XOR the direction's sign bits orders the cells front to back (Revelles et al.
+// 2000's observation); the order only affects speed, exactness comes from culling every
+// entry beyond the closest hit found so far and never stopping early.
+
+bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
+    const SlabRay slab(ray);
+    const SimdRay simd(slab);
+    const TriangleRay tri(ray);
+    Hit best;
+    best.t = ray.maxt;
+    auto interval = SimdRay::interval(ray.mint, best.t);
+
+    StackEntry stack[kStackSize];
+    int sp = 0;
+    uint32_t child = 0, count = 0;
+    alignas(32) float tnear[8];
+    while (true) {
+        if (count == 0) {
+            const OctreeNode &node = m_nodes[child];
+            unsigned mask = simd.test(node, interval, tnear);
+            if (mask) {
+                int first = __builtin_ctz(mask);
+                mask &= mask - 1;
+                while (mask) {  // farthest first, so that nearer ones pop first
+                    int j = 31 - __builtin_clz(mask);
+                    mask ^= 1u << j;
+                    unsigned c = unsigned(j) ^ simd.octant;
+                    stack[sp++] = {node.child[c], node.count[c], tnear[j]};
+                }
+                unsigned c = unsigned(first) ^ simd.octant;
+                child = node.child[c];
+                count = node.count[c];
+                continue;
+            }
+        } else if (m_triangles.intersect(tri, child, count, best)) {
+            interval = SimdRay::interval(ray.mint, best.t);
+        }
+        do {
+            if (sp == 0) {
+                if (best.prim == ~0u) return false;
+                hit = best;
+                return true;
+            }
+            --sp;
+        } while (stack[sp].tnear > best.t);
+        child = stack[sp].child;
+        count = stack[sp].count;
+    }
+}
+
+bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
+    const SlabRay slab(ray);
+    const SimdRay simd(slab);
+    const TriangleRay tri(ray);
+    const auto interval = SimdRay::interval(ray.mint, ray.maxt);
+
+    uint32_t stack[kStackSize][2];
+    int sp = 0;
+    uint32_t child = 0, count = 0;
+    alignas(32) float tnear[8];
+    while (true) {
+        if (count == 0) {
+            const OctreeNode &node = m_nodes[child];
+            unsigned mask = simd.test(node, interval, tnear);
+            if (mask) {
+                int first = __builtin_ctz(mask);
+                mask &= mask - 1;
+                while (mask) {
+                    int j = 31 - __builtin_clz(mask);
+                    mask ^= 1u << j;
+                    unsigned c = unsigned(j) ^ simd.octant;
+                    stack[sp][0] = node.child[c];
+                    stack[sp++][1] = node.count[c];
+                }
+                unsigned c = unsigned(first) ^ simd.octant;
+                child = node.child[c];
+                count = node.count[c];
+                continue;
+            }
+        } else if (m_triangles.occluded(tri, child, count, ray.maxt)) {
+            return true;
+        }
+        if (sp == 0) return false;
+        --sp;
+        child = stack[sp][0];
+        count = stack[sp][1];
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// sorted: scalar box tests, children sorted by entry distance, cull entries beyond the best hit.
+
+namespace {
+/// Hit children of \p node sorted by entry distance, nearest first; returns how many.
+int sortedChildren(const OctreeNode &node, const SlabRay &slab, float mint, float maxt, int order[8],
+                   float tnear[8]) {
+    int n = 0;
+    for (int c = 0; c < 8; ++c) {
+        float t;
+        if (!slab.hit(node, c, mint, maxt, t)) continue;
+        int k = n++;
+        for (; k > 0 && tnear[k - 1] > t; --k) {  // insertion sort
+            tnear[k] = tnear[k - 1];
+            order[k] = order[k - 1];
+        }
+        tnear[k] = t;
+        order[k] = c;
+    }
+    return n;
+}
+} // namespace
+
+bool OctreeAccel::intersectSorted(const Ray3f &ray, Hit &hit) const {
+    const SlabRay slab(ray);
+    const TriangleRay tri(ray);
+    Hit best;
+    best.t = ray.maxt;
+    StackEntry stack[kStackSize];
+    int sp = 0;
+    stack[sp++] = {0, 0, ray.mint};
+    while (sp > 0) {
+        StackEntry e = stack[--sp];
+        if (e.tnear > best.t) continue;
+        if (e.count > 0) {
+            m_triangles.intersect(tri, e.child, e.count, best);
+            continue;
+        }
+        const OctreeNode &node = m_nodes[e.child];
+        int order[8];
+        float tnear[8];
+        int n = sortedChildren(node, slab, ray.mint, best.t, order, tnear);
+        for (int k = n - 1; k >= 0; --k)
+            stack[sp++] = {node.child[order[k]], node.count[order[k]], tnear[k]};
+    }
+    if (best.prim == ~0u) return false;
+    hit = best;
+    return true;
+}
+
+bool OctreeAccel::occludedSorted(const Ray3f &ray) const {
+    const SlabRay slab(ray);
+    const TriangleRay tri(ray);
+    StackEntry stack[kStackSize];
+    int sp = 0;
+    stack[sp++] = {0, 0, ray.mint};
+    while (sp > 0) {
+        StackEntry e = stack[--sp];
+        if (e.count > 0) {
+            if (m_triangles.occluded(tri, e.child, e.count, ray.maxt)) return true;
+            continue;
+        }
+        const OctreeNode &node = m_nodes[e.child];
+        int order[8];
+        float tnear[8];
+        int n = sortedChildren(node, slab, ray.mint, ray.maxt, order, tnear);
+        for (int k = n - 1; k >= 0; --k) stack[sp++] = {node.child[order[k]], node.count[order[k]], tnear[k]};
+    }
+    return false;
+}
+
+// ---------------------------------------------------------------------------------------------
+// seed: the seed report's method, kept for the speed-versus-accuracy chart. Children are
+// ordered by the distance from the ray origin to their box and the search stops after the
+// first child subtree that reports any hit, which is not always the closest one.
+
+namespace {
+float distanceToBox(const OctreeNode &node, int c, const Ray3f &ray) {
+    float d2 = 0.0f;
+    for (int a = 0; a < 3; ++a) {
+        float lo = node.box[a][c], hi = node.box[a][8 + c];
+        float d = ray.o[a] < lo ? lo - ray.o[a] : (ray.o[a] > hi ? ray.o[a] - hi : 0.0f);
+        d2 += d * d;
+    }
+    return d2;
+}
+
+bool seedRecurse(const std::vector<OctreeNode> &nodes, const TriangleStore &store, uint32_t index,
+                 const Ray3f &ray, const SlabRay &slab, const TriangleRay &tri, Hit &best) {
+    const OctreeNode &node = nodes[index];
+    int order[8], n = 0;
+    float dist[8];
+    for (int c = 0; c < 8; ++c) {
+        if (node.box[0][c] > node.box[0][8 + c]) continue;  // empty child
+        float d = distanceToBox(node, c, ray);
+        int k = n++;
+        for (; k > 0 && dist[k - 1] > d; --k) {
+            dist[k] = dist[k - 1];
+            order[k] = order[k - 1];
+        }
+        dist[k] = d;
+        order[k] = c;
+    }
+    for (int k = 0; k < n; ++k) {
+        int c = order[k];
+        float t;
+        if (!slab.hit(node, c, ray.mint, best.t, t)) continue;
+        bool found = node.count[c] > 0 ? store.intersect(tri, node.child[c], node.count[c], best)
+                                       : seedRecurse(nodes, store, node.child[c], ray, slab, tri, best);
+        if (found) return true;
+    }
+    return false;
+}
+} // namespace
+
+bool OctreeAccel::intersectSeed(const Ray3f &ray, Hit &hit) const {
+    const SlabRay slab(ray);
+    const TriangleRay tri(ray);
+    Hit best;
+    best.t = ray.maxt;
+    if (!seedRecurse(m_nodes, m_triangles, 0, ray, slab, tri, best)) return false;
+    hit = best;
+    return true;
+}
+
+} // namespace nori
