@@ -107,6 +107,10 @@ MeshData oneTriangle() {
 struct Pathology {
     std::string name;
     std::vector<MeshData> meshes;
+    /// Bound on triangle references per triangle. Inputs no split can separate (a fan, copies
+    /// of one triangle) deserve little duplication; a needle crossing the whole box at depth
+    /// d lies in up to ~3 * 2^d cells, so needle-like inputs get a depth-scaled allowance.
+    double maxRefsPerTriangle;
 };
 
 /// Rays through the scene's box (or [-1, 1]^3 if it is empty), plus rays aimed at vertices.
@@ -157,8 +161,10 @@ void checkPathology(const Pathology &p) {
                 p.name.c_str(), triangles, refsPerTri, bytes, depth, leaves);
     ASSERT_GE(refs, 0.0) << "octree reports no triangle_refs";
     ASSERT_GE(bytes, 0.0) << "octree reports no bytes";
-    EXPECT_LE(refsPerTri, 64.0) << p.name;
-    EXPECT_LE(bytes, 512.0 * double(triangles) + 1e6) << p.name;
+    EXPECT_LE(refsPerTri, p.maxRefsPerTriangle) << p.name;
+    // Memory proportional to the references (no hidden growth of empty nodes): 128 bytes per
+    // reference covers a reference, its share of a leaf and of the inner nodes above it.
+    EXPECT_LE(bytes, 128.0 * refs + 65536.0) << p.name;
 
     size_t mismatches = 0;
     for (const Ray3f &ray : probeRays(meshes, 3000)) {
@@ -175,14 +181,14 @@ void checkPathology(const Pathology &p) {
     EXPECT_EQ(mismatches, 0u) << p.name;
 }
 
-TEST(Pathological, FanOf100kTrianglesSharingOneVertex) { checkPathology({"fan 100k", {fan(100000)}}); }
-TEST(Pathological, TenThousandIdenticalTriangles) { checkPathology({"identical 10k", {identical(10000)}}); }
-TEST(Pathological, TenThousandNeedlesSpanningTheBox) { checkPathology({"needles 10k", {needles(10000)}}); }
-TEST(Pathological, TeapotInAStadium) { checkPathology({"teapot in stadium", teapotInAStadium()}); }
-TEST(Pathological, AllDegenerateTriangles) { checkPathology({"degenerate 3k", {degenerate(3000)}}); }
-TEST(Pathological, EmptyScene) { checkPathology({"empty", {}}); }
-TEST(Pathological, EmptyMesh) { checkPathology({"empty mesh", {MeshData()}}); }
-TEST(Pathological, OneTriangle) { checkPathology({"one triangle", {oneTriangle()}}); }
+TEST(Pathological, FanOf100kTrianglesSharingOneVertex) { checkPathology({"fan 100k", {fan(100000)}, 16}); }
+TEST(Pathological, TenThousandIdenticalTriangles) { checkPathology({"identical 10k", {identical(10000)}, 8}); }
+TEST(Pathological, TenThousandNeedlesSpanningTheBox) { checkPathology({"needles 10k", {needles(10000)}, 256}); }
+TEST(Pathological, TeapotInAStadium) { checkPathology({"teapot in stadium", teapotInAStadium(), 32}); }
+TEST(Pathological, AllDegenerateTriangles) { checkPathology({"degenerate 3k", {degenerate(3000)}, 64}); }
+TEST(Pathological, EmptyScene) { checkPathology({"empty", {}, 0}); }
+TEST(Pathological, EmptyMesh) { checkPathology({"empty mesh", {MeshData()}, 0}); }
+TEST(Pathological, OneTriangle) { checkPathology({"one triangle", {oneTriangle()}, 8}); }
 
 // Degenerate triangles are valid input: the OBJ loader keeps them, queries stay sane, and a
 // triangle whose corners coincide is never hit (its edges are exactly zero).
