@@ -18,11 +18,8 @@ public:
         Intersection its;
         if (!scene.rayIntersect(ray, its)) return Color3f(0.0f);
         // Occlusion of the hemisphere on the side the camera sees.
-        Normal3f ng = its.geoFrame.n, ns = its.shFrame.n;
-        if (ng.dot(ray.d) > 0.0f) {
-            ng = -ng;
-            ns = -ns;
-        }
+        Normal3f ng, ns;
+        its.normalsFacing(ray.d, ng, ns);
         Frame frame(ns);
         int visible = 0;
         for (int i = 0; i < m_samples; ++i) {

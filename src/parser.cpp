@@ -136,9 +136,8 @@ private:
         return value;
     }
 
-    /// "x, y, z" (commas and/or whitespace); a single value is repeated if \p allowScalar.
-    Vector3f parseVector(const pugi::xml_node &node, const std::string &text, const char *what,
-                         bool allowScalar = false) const {
+    /// Components of a vector or matrix value, separated by commas and/or whitespace.
+    static std::vector<std::string> splitComponents(const std::string &text) {
         std::vector<std::string> tokens;
         std::string token;
         for (char c : text) {
@@ -150,6 +149,13 @@ private:
             }
         }
         if (!token.empty()) tokens.push_back(token);
+        return tokens;
+    }
+
+    /// "x, y, z" (commas and/or whitespace); a single value is repeated if \p allowScalar.
+    Vector3f parseVector(const pugi::xml_node &node, const std::string &text, const char *what,
+                         bool allowScalar = false) const {
+        std::vector<std::string> tokens = splitComponents(text);
         if (allowScalar && tokens.size() == 1) return Vector3f::Constant(parseFloat(node, tokens[0], what));
         if (tokens.size() != 3)
             fail(node, fmt::format("{} '{}' must have 3 components, found {}", what, text, tokens.size()));
@@ -194,18 +200,7 @@ private:
             }
             case Tag::Matrix: {
                 checkAttributes(node, {"value"}, {"value"});
-                std::istringstream is(attr(node, "value"));
-                std::vector<std::string> tokens;
-                std::string text = attr(node, "value"), token;
-                for (char c : text) {
-                    if (c == ',' || std::isspace((unsigned char)c)) {
-                        if (!token.empty()) tokens.push_back(token);
-                        token.clear();
-                    } else {
-                        token += c;
-                    }
-                }
-                if (!token.empty()) tokens.push_back(token);
+                std::vector<std::string> tokens = splitComponents(attr(node, "value"));
                 if (tokens.size() != 16)
                     fail(node, fmt::format("matrix needs 16 values (row-major), found {}", tokens.size()));
                 Matrix4f m;

@@ -15,11 +15,8 @@ public:
         Intersection its;
         if (!scene.rayIntersect(ray, its)) return Color3f(0.0f);
         // Shade the side the camera sees.
-        Normal3f ng = its.geoFrame.n, ns = its.shFrame.n;
-        if (ng.dot(ray.d) > 0.0f) {
-            ng = -ng;
-            ns = -ns;
-        }
+        Normal3f ng, ns;
+        its.normalsFacing(ray.d, ng, ns);
         Vector3f toLight = m_position - its.p;
         float distance2 = toLight.squaredNorm();
         float cosTheta = ns.dot(toLight) / std::sqrt(distance2);
