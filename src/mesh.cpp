@@ -5,6 +5,7 @@ namespace nori {
 
 Mesh::Mesh(MeshData data, const std::string &name) : m_name(name) { setData(std::move(data)); }
 
+Mesh::Mesh() = default;
 Mesh::~Mesh() = default;
 
 void Mesh::setData(MeshData data) {

@@ -10,7 +10,7 @@ void NoriObject::addChild(std::unique_ptr<NoriObject> child) {
 }
 
 const char *NoriObject::classTypeName(EClassType type) {
-    static const char *names[] = {"scene", "mesh", "bsdf", "camera", "sampler", "integrator", "rfilter", "accel"};
+    static const char *names[] = {"scene", "mesh", "bsdf", "camera", "sampler", "integrator", "rfilter", "accel", "emitter", "test"};
     return type < EClassTypeCount ? names[type] : "unknown";
 }
 

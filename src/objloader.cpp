@@ -59,12 +59,15 @@ bool isGzip(const std::string &data) {
 
 /// Inflate a complete .gz file (possibly several concatenated members, like `gzip -dc`).
 std::string gunzip(const std::string &in, const std::string &path) {
-    // The gzip trailer stores the uncompressed size mod 2^32: a good first allocation.
+    // The gzip trailer stores the uncompressed size mod 2^32: a good first allocation. It is
+    // only a claim of the file, though: deflate expands at most ~1032:1, so a larger claim
+    // (a corrupt or hostile trailer) must not reserve gigabytes for a few bytes of input.
     size_t hint = in.size() * 4;
     if (in.size() >= 18) {
         const unsigned char *t = reinterpret_cast<const unsigned char *>(in.data() + in.size() - 4);
         hint = size_t(t[0]) | size_t(t[1]) << 8 | size_t(t[2]) << 16 | size_t(t[3]) << 24;
     }
+    hint = std::min(hint, in.size() * 1032 + 1024);
     std::string out;
     out.resize(std::max<size_t>(hint, 1 << 16) + 1);
 

@@ -25,6 +25,13 @@ struct Intersection {
     Frame geoFrame;      ///< geometric frame
     const Mesh *mesh = nullptr;
     uint32_t triIndex = 0;  ///< triangle index within \p mesh
+
+    /// \brief Geometric and shading normals flipped to the side that a ray along \p d sees.
+    void normalsFacing(const Vector3f &d, Normal3f &ng, Normal3f &ns) const {
+        float sign = geoFrame.n.dot(d) > 0.0f ? -1.0f : 1.0f;
+        ng = sign * geoFrame.n;
+        ns = sign * shFrame.n;
+    }
 };
 
 /// \brief One named statistic of a built accelerator (printed by --stats, written as JSON).

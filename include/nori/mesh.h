@@ -22,7 +22,7 @@ struct MeshData {
 /// \brief A triangle mesh in world space with its BSDF.
 class Mesh : public NoriObject {
 public:
-    Mesh() = default;
+    Mesh();
     /// \brief A mesh from buffers already in world space (used by tests and tools).
     Mesh(MeshData data, const std::string &name);
     ~Mesh() override;

@@ -13,7 +13,7 @@ class NoriObject {
 public:
     /// \brief The XML element an object belongs to.
     enum EClassType { EScene = 0, EMesh, EBSDF, ECamera, ESampler, EIntegrator,
-                      EReconstructionFilter, EAccel, EClassTypeCount };
+                      EReconstructionFilter, EAccel, EEmitter, ETest, EClassTypeCount };
 
     virtual ~NoriObject() = default;
     /// \brief Which XML element this object is.

@@ -1,0 +1,203 @@
+#include "bench_runner.h"
+#include "embree_oracle.h"
+#include "ray_sets.h"
+#include "ray_workload.h"
+#include <nori/object.h>
+#include <tbb/info.h>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+namespace nori::bench {
+
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+void finish(SetTiming &s) {
+    s.ms = median(s.samples);
+    s.mraysPerS = s.ms > 0.0 ? double(s.rays) / (s.ms * 1e3) : 0.0;
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+BenchRunner::BenchRunner(const BenchOptions &options, const OctreeCatalog &catalog)
+    : m_options(options), m_catalog(catalog), m_timer(options.threads),
+      m_threads(options.threads > 0 ? options.threads : tbb::info::default_concurrency()) {}
+
+template <typename Tracer>
+std::array<SetTiming, 3> BenchRunner::interleaved(const Tracer &tracer, const EmbreeOracle &embree,
+                                                  const RayWorkload &work,
+                                                  std::array<std::vector<double>, 3> *embreeSamples) const {
+    std::array<SetTiming, 3> out;
+    std::vector<float> answers, embreeAnswers;
+    for (int s = 0; s < RayWorkload::Count; ++s) {
+        const RaySet &set = work.set(s);
+        SetTiming &t = out[size_t(s)];
+        t.name = set.name;
+        t.rays = set.size();
+        std::vector<double> embreeRuns;
+        // Embree, contender, Embree, contender ...: slow drift of the machine hits both alike.
+        for (int r = 0; r < m_options.repeats; ++r) {
+            embreeRuns.push_back(m_timer.trace(embree, set, embreeAnswers));
+            t.samples.push_back(m_timer.trace(tracer, set, answers));
+        }
+        finish(t);
+        t.embreeMs = median(embreeRuns);
+        t.ratioVsEmbree = t.ms > 0.0 ? t.embreeMs / t.ms : 0.0;
+        t.hasAccuracy = true;
+        t.accuracy = Accuracy::compare(answers, set.reference);
+        if (embreeSamples) {
+            auto &dst = (*embreeSamples)[size_t(s)];
+            dst.insert(dst.end(), embreeRuns.begin(), embreeRuns.end());
+        }
+    }
+    return out;
+}
+
+void BenchRunner::progress(const std::string &what, const RunResult &run) const {
+    std::string line = fmt::format("[nori-bench]   {:<34} build {:>9.1f} ms", what, run.buildMs);
+    for (const SetTiming &s : run.sets)
+        line += fmt::format(" | {} {:.3f} Mr/s {:.2f}x {} mism", s.name, s.mraysPerS, s.ratioVsEmbree,
+                            s.accuracy.mismatches);
+    std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+RunResult BenchRunner::runAccel(const std::string &accelName, Accel &accel, const OctreeConfig *config,
+                                const BenchInput &input, const EmbreeOracle &embree, const RayWorkload &work,
+                                std::array<std::vector<double>, 3> *embreeSamples) const {
+    RunResult run;
+    run.accel = accelName;
+    if (config) {
+        run.hasConfig = true;
+        run.config = *config;
+    }
+    for (const Mesh *mesh : input.meshPointers()) accel.addMesh(mesh);
+    accel.build();
+    run.buildMs = accel.buildMilliseconds();
+    run.stats = accel.statistics();
+    run.sets = interleaved(accel, embree, work, embreeSamples);
+    return run;
+}
+
+MeshResult BenchRunner::run(const BenchInput &input) const {
+    MeshResult result;
+    result.mesh = input.name;
+    result.triangles = input.triangleCount();
+    result.threads = m_threads;
+    result.loadMs = input.loadMs;
+    result.repeats = m_options.repeats;
+    result.notes = m_catalog.skipped();
+    std::vector<const Mesh *> meshes = input.meshPointers();
+    MeshTable table(meshes);
+
+    std::fprintf(stderr, "[nori-bench] %s: %llu triangles, loaded in %.1f ms, %d thread(s)\n", input.name.c_str(),
+                 (unsigned long long)result.triangles, input.loadMs, m_threads);
+
+    // Embree: the robust scene is the accuracy reference, the default one the speed peer.
+    // Builds are repeated and the median kept (they are cheap next to the ray sets).
+    int embreeThreads = m_options.threads;  // 0: Embree's default (all cores)
+    std::vector<double> fastBuilds, robustBuilds;
+    std::unique_ptr<EmbreeOracle> fast, robust;
+    for (int r = 0; r < m_options.repeats; ++r) {
+        fast.reset();
+        robust.reset();
+        fast = std::make_unique<EmbreeOracle>(meshes, EmbreeOracle::Options{false, embreeThreads});
+        fastBuilds.push_back(fast->buildMilliseconds());
+        robust = std::make_unique<EmbreeOracle>(meshes, EmbreeOracle::Options{true, embreeThreads});
+        robustBuilds.push_back(robust->buildMilliseconds());
+    }
+    result.embree.buildMs = median(fastBuilds);
+    result.embree.bytes = fast->bytes();
+    result.embreeRobust.buildMs = median(robustBuilds);
+    result.embreeRobust.bytes = robust->bytes();
+    std::fprintf(stderr, "[nori-bench]   embree build %.1f ms (%lld bytes), robust %.1f ms (%lld bytes)\n",
+                 result.embree.buildMs, result.embree.bytes, result.embreeRobust.buildMs, result.embreeRobust.bytes);
+
+    // Ray sets (not timed as part of any contender).
+    auto genStart = std::chrono::steady_clock::now();
+    std::unique_ptr<Camera> framing;
+    const Camera *camera = input.camera();
+    if (camera) {
+        result.camera = "scene";
+    } else {
+        framing = framingCamera(table.bbox(), m_options.width, m_options.height);
+        camera = framing.get();
+        result.camera = "framing";
+    }
+    result.width = camera->outputSize().x();
+    result.height = camera->outputSize().y();
+    result.spp = m_options.spp;
+    RayWorkload work(*camera, m_options.spp, *robust, table);
+    result.rayGenerationMs = msSince(genStart);
+    std::fprintf(stderr, "[nori-bench]   rays: primary %zu, diffuse %zu, shadow %zu (generated in %.0f ms)\n",
+                 work.set(0).size(), work.set(1).size(), work.set(2).size(), result.rayGenerationMs);
+
+    // Warm-up (untimed): thread pools, caches and page faults of the first pass.
+    {
+        std::vector<float> scratch;
+        for (const RaySet &set : work.sets()) m_timer.trace(*fast, set, scratch);
+    }
+    std::array<std::vector<double>, 3> embreeSamples;
+
+    // Embree robust against Embree default, interleaved like any contender.
+    {
+        std::array<SetTiming, 3> robustSets = interleaved(*robust, *fast, work, &embreeSamples);
+        result.embreeRobust.sets = robustSets;
+    }
+
+    // The octree configurations.
+    const auto &configs = m_catalog.configs();
+    for (size_t c = 0; c < configs.size(); ++c) {
+        std::unique_ptr<Accel> accel = OctreeCatalog::create(configs[c]);
+        RunResult run = runAccel("octree", *accel, &configs[c], input, *fast, work, &embreeSamples);
+        result.runs.push_back(std::move(run));
+        progress(fmt::format("[{}/{}] {}", c + 1, configs.size(), configs[c].label()), result.runs.back());
+    }
+
+    // Brute force on a strided subset of each ray set, against Embree on the same subset.
+    if (m_options.noBrute) {
+        std::fprintf(stderr, "[nori-bench]   brute force skipped (--no-brute)\n");
+    } else if (result.triangles > m_options.bruteMaxTriangles) {
+        std::fprintf(stderr, "[nori-bench]   brute force skipped (%llu triangles > %zu)\n",
+                     (unsigned long long)result.triangles, m_options.bruteMaxTriangles);
+    } else {
+        RayWorkload subset = work.subset(m_options.bruteRays);
+        std::unique_ptr<NoriObject> object =
+            NoriObjectFactory::createInstance(NoriObject::EAccel, "brute", PropertyList());
+        Accel &brute = static_cast<Accel &>(*object);
+        RunResult run = runAccel("brute", brute, nullptr, input, *fast, subset, nullptr);
+        result.runs.push_back(std::move(run));
+        progress(fmt::format("brute ({} rays/set)", subset.set(0).size()), result.runs.back());
+    }
+
+    // Embree's own numbers: the median of all its interleaved runs; its accuracy vs robust.
+    std::vector<float> answers;
+    for (int s = 0; s < RayWorkload::Count; ++s) {
+        SetTiming &t = result.embree.sets[size_t(s)];
+        t.name = work.set(s).name;
+        t.rays = work.set(s).size();
+        t.samples = embreeSamples[size_t(s)];
+        finish(t);
+        t.embreeMs = t.ms;
+        t.ratioVsEmbree = 1.0;
+        m_timer.trace(*fast, work.set(s), answers);
+        t.hasAccuracy = true;
+        t.accuracy = Accuracy::compare(answers, work.set(s).reference);
+    }
+    const auto &e = result.embree.sets;
+    std::fprintf(stderr, "[nori-bench]   embree: primary %.3f, diffuse %.3f, shadow %.3f Mrays/s\n",
+                 e[0].mraysPerS, e[1].mraysPerS, e[2].mraysPerS);
+    return result;
+}
+
+} // namespace nori::bench

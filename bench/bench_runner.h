@@ -1,0 +1,43 @@
+/// \file bench_runner.h
+/// \brief Runs every contender on one input, interleaved with Embree, and collects the results.
+#pragma once
+
+#include "bench_options.h"
+#include "bench_results.h"
+#include "mesh_source.h"
+#include "octree_catalog.h"
+#include "ray_timer.h"
+
+namespace nori {
+class EmbreeOracle;
+}
+
+namespace nori::bench {
+
+class RayWorkload;
+
+class BenchRunner {
+public:
+    BenchRunner(const BenchOptions &options, const OctreeCatalog &catalog);
+
+    /// \brief Measure everything on \p input (progress on stderr).
+    MeshResult run(const BenchInput &input) const;
+
+private:
+    /// \brief Time \p tracer on every set of \p work, each run followed by one of \p embree;
+    /// fills timings and accuracy. \p embreeSamples collects the Embree runs per set.
+    template <typename Tracer>
+    std::array<SetTiming, 3> interleaved(const Tracer &tracer, const EmbreeOracle &embree, const RayWorkload &work,
+                                         std::array<std::vector<double>, 3> *embreeSamples) const;
+    RunResult runAccel(const std::string &accelName, Accel &accel, const OctreeConfig *config,
+                       const BenchInput &input, const EmbreeOracle &embree, const RayWorkload &work,
+                       std::array<std::vector<double>, 3> *embreeSamples) const;
+    void progress(const std::string &what, const RunResult &run) const;
+
+    const BenchOptions &m_options;
+    const OctreeCatalog &m_catalog;
+    RayTimer m_timer;
+    int m_threads;
+};
+
+} // namespace nori::bench

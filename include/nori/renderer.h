@@ -1,0 +1,42 @@
+/// \file renderer.h
+/// \brief Block-based image renderer, single-threaded or on oneTBB.
+#pragma once
+
+#include <nori/bitmap.h>
+#include <atomic>
+
+namespace nori {
+
+class Scene;
+
+/// \brief How to render.
+struct RenderSettings {
+    int threads = 0;                             ///< 1: a plain loop; otherwise oneTBB
+    bool progress = true;                        ///< progress display on stderr
+    const std::atomic<bool> *cancel = nullptr;   ///< set (e.g. by SIGINT) to stop after blocks in flight
+};
+
+/// \brief What a render produced.
+struct RenderResult {
+    Bitmap image;
+    bool complete = false;      ///< false if cancelled
+    int blocksRendered = 0;
+    int blockCount = 0;
+    uint64_t rays = 0;          ///< rays traced (camera + secondary)
+    uint64_t droppedSamples = 0;///< non-finite samples left out of the image
+    double milliseconds = 0.0;
+};
+
+/// \brief Renders a scene in 32x32 blocks. Each block has its own sampler seeded by the
+/// block index, and blocks are merged in index order, so the image is bit-identical for
+/// any thread count.
+class BlockRenderer {
+public:
+    explicit BlockRenderer(const Scene &scene) : m_scene(scene) {}
+    RenderResult render(const RenderSettings &settings) const;
+
+private:
+    const Scene &m_scene;
+};
+
+} // namespace nori

@@ -1,0 +1,47 @@
+/// \file scene.h
+/// \brief The scene: meshes, accelerator, camera, sampler and integrator.
+#pragma once
+
+#include <nori/accel.h>
+#include <nori/camera.h>
+#include <nori/integrator.h>
+#include <nori/sampler.h>
+
+namespace nori {
+
+/// \brief Root object of a scene file; owns everything in it.
+class Scene : public NoriObject {
+public:
+    explicit Scene(const PropertyList &props);
+    ~Scene() override;
+
+    /// \brief Closest hit along \p ray (counts one ray).
+    bool rayIntersect(const Ray3f &ray, Intersection &its) const;
+    /// \brief Is anything in [ray.mint, ray.maxt]? (a shadow ray; counts one ray)
+    bool rayIntersect(const Ray3f &ray) const;
+    /// \brief Rays traced by the calling thread so far (the renderer takes differences).
+    static uint64_t threadRayCount();
+
+    const Accel &accel() const { return *m_accel; }
+    const Camera &camera() const { return *m_camera; }
+    const Sampler &sampler() const { return *m_sampler; }
+    const Integrator &integrator() const { return *m_integrator; }
+    Integrator &integrator() { return *m_integrator; }
+    const std::vector<std::unique_ptr<Mesh>> &meshes() const { return m_meshes; }
+    const BoundingBox3f &bbox() const { return m_accel->bbox(); }
+
+    void addChild(std::unique_ptr<NoriObject> child) override;
+    /// \brief Checks that camera and integrator exist and builds the accelerator.
+    void activate() override;
+    EClassType getClassType() const override { return EScene; }
+    std::string toString() const override;
+
+private:
+    std::vector<std::unique_ptr<Mesh>> m_meshes;
+    std::unique_ptr<Accel> m_accel;
+    std::unique_ptr<Camera> m_camera;
+    std::unique_ptr<Sampler> m_sampler;
+    std::unique_ptr<Integrator> m_integrator;
+};
+
+} // namespace nori

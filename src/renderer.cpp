@@ -1,0 +1,116 @@
+#include <nori/block.h>
+#include <nori/progress.h>
+#include <nori/renderer.h>
+#include <nori/rfilter.h>
+#include <nori/scene.h>
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <tbb/parallel_for.h>
+
+namespace nori {
+
+namespace {
+
+/// Renders one block: every pixel, every sample, splatted with the camera's filter.
+uint64_t renderBlock(const Scene &scene, Sampler &sampler, ImageBlock &block) {
+    const Camera &camera = scene.camera();
+    const Integrator &integrator = scene.integrator();
+    const Point2i offset = block.offset();
+    const Vector2i size = block.size();
+    const int spp = sampler.sampleCount();
+    uint64_t raysBefore = Scene::threadRayCount();
+    for (int y = 0; y < size.y(); ++y)
+        for (int x = 0; x < size.x(); ++x)
+            for (int s = 0; s < spp; ++s) {
+                Point2f pixel = Point2f(float(offset.x() + x), float(offset.y() + y)) + sampler.next2D();
+                Ray3f ray;
+                Color3f weight = camera.sampleRay(ray, pixel, sampler.next2D());
+                block.put(pixel, weight * integrator.Li(scene, sampler, ray));
+            }
+    return Scene::threadRayCount() - raysBefore;
+}
+
+/// Collects finished blocks and adds them to the image strictly in block-index order:
+/// float sums then do not depend on which thread finished first.
+class OrderedMerger {
+public:
+    OrderedMerger(ImageBlock &image) : m_image(image) {}
+
+    void add(int index, ImageBlock &&block) {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        m_pending.emplace(index, std::move(block));
+        for (auto it = m_pending.find(m_next); it != m_pending.end(); it = m_pending.find(++m_next)) {
+            m_image.put(it->second);
+            m_pending.erase(it);
+        }
+    }
+
+    /// After a cancelled render: add what finished beyond the first gap, still in order.
+    void flush() {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        for (auto &entry : m_pending) m_image.put(entry.second);
+        m_pending.clear();
+    }
+
+private:
+    ImageBlock &m_image;
+    std::mutex m_mutex;
+    std::map<int, ImageBlock> m_pending;
+    int m_next = 0;
+};
+
+} // namespace
+
+RenderResult BlockRenderer::render(const RenderSettings &settings) const {
+    auto start = std::chrono::steady_clock::now();
+    const Camera &camera = m_scene.camera();
+    const Vector2i outputSize = camera.outputSize();
+    const ReconstructionFilter *filter = camera.reconstructionFilter();
+    BlockGenerator generator(outputSize, 32);
+    ImageBlock image(outputSize, filter);
+    image.clear();
+    OrderedMerger merger(image);
+    ProgressReporter progress("Rendering", generator.blockCount(), settings.progress);
+
+    std::atomic<int> rendered{0};
+    std::atomic<uint64_t> rays{0}, dropped{0};
+    auto cancelled = [&] { return settings.cancel && settings.cancel->load(); };
+    auto work = [&](int index) {
+        if (cancelled()) return;
+        ImageBlock block(Vector2i(32, 32), filter);
+        generator.prepare(index, block);
+        std::unique_ptr<Sampler> sampler = m_scene.sampler().clone();
+        sampler->prepare(uint64_t(index));
+        rays += renderBlock(m_scene, *sampler, block);
+        dropped += block.droppedSamples();
+        merger.add(index, std::move(block));
+        ++rendered;
+        progress.advance();
+    };
+
+    if (settings.threads == 1) {
+        for (int i = 0; i < generator.blockCount(); ++i) work(i);
+    } else {
+        // One task per block; tbb::global_control (set by the caller) bounds the threads.
+        tbb::parallel_for(tbb::blocked_range<int>(0, generator.blockCount(), 1),
+                          [&](const tbb::blocked_range<int> &range) {
+                              for (int i = range.begin(); i != range.end(); ++i) work(i);
+                          },
+                          tbb::simple_partitioner());
+    }
+    merger.flush();
+    progress.finish();
+
+    RenderResult result;
+    result.image = image.toBitmap();
+    result.blockCount = generator.blockCount();
+    result.blocksRendered = rendered.load();
+    result.complete = result.blocksRendered == result.blockCount;
+    result.rays = rays.load();
+    result.droppedSamples = dropped.load() + image.droppedSamples();
+    result.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+} // namespace nori
