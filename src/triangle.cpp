@@ -331,6 +331,7 @@ inline Lanes watertight16(const TriangleRay &r, const float *rows, uint32_t n, u
     __mmask16 pos = _mm512_cmp_ps_mask(U, zero, _CMP_GT_OQ) | _mm512_cmp_ps_mask(V, zero, _CMP_GT_OQ) |
                     _mm512_cmp_ps_mask(W, zero, _CMP_GT_OQ);
     __mmask16 valid = m & ~redo & ~(neg & pos);
+    if (!valid) return {U, V, W, 0, redo};  // most steps: the ray passes beside all sixteen
     __m512 det = _mm512_add_ps(_mm512_add_ps(U, V), W);
     valid &= _mm512_cmp_ps_mask(det, zero, _CMP_NEQ_UQ);
     __m512 T = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(U, _mm512_mul_ps(sz, az0)), _mm512_mul_ps(V, _mm512_mul_ps(sz, bz0))),

@@ -168,6 +168,8 @@ struct OracleCase {
 };
 
 std::string caseName(const testing::TestParamInfo<OracleCase> &info) { return info.param.name; }
+/// Readable parameter in test listings (gtest prints raw bytes otherwise).
+void PrintTo(const OracleCase &c, std::ostream *os) { *os << c.name; }
 
 class Oracle : public testing::TestWithParam<OracleCase> {};
 

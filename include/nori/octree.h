@@ -52,7 +52,7 @@ public:
     Traversal traversal() const { return m_traversal; }
 
     /// \brief Deepest allowed level (the root is level 0); clamped to kMaxDepthLimit.
-    static constexpr int kMaxDepthLimit = 24;
+    static constexpr int kMaxDepthLimit = 32;
 
 protected:
     void buildImpl() override;
