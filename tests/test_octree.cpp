@@ -246,7 +246,7 @@ TEST(Octree, MatchesBruteForceBitForBit) {
             Answers reference = answers(*makeAccel("brute", bp, meshes), rays);
             for (const char *trav : {"simd", "sorted"})
                 for (const char *overlap : {"exact", "bbox"})
-                    for (auto [depth, leaf] : {std::pair{16, 8}, {3, 1}, {0, 8}, {24, 1}, {10, 32}, {16, 512}}) {
+                    for (auto [depth, leaf] : {std::pair{16, 8}, {3, 1}, {0, 8}, {32, 1}, {10, 32}, {16, 512}}) {
                         if (depth == 0 && scene.name != "empty_and_single") continue;  // brute force again
                         PropertyList p;
                         p.setString("intersector", isect);
