@@ -17,15 +17,28 @@ struct alignas(64) OctreeNode {
     /// 16-lane load per axis fetches both slabs of all eight children. An empty child has
     /// lower = +inf and upper = -inf: no ray ever enters it.
     float box[3][16];
-    /// Inner child: index into the node array (count[c] == 0). Leaf: first triangle
-    /// reference in the TriangleStore (count[c] > 0 triangles).
+    /// Inner child: index into the node array (count[c] == 0). Leaf: word offset of its block
+    /// in the TriangleStore (count[c] > 0 triangles).
     uint32_t child[8];
     uint32_t count[8];
 };
 static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
 
-/// \brief Octree accelerator. Properties: `maxDepth`, `leafSize`, `overlap` (bbox | exact),
-/// `traversal` (seed | sorted | simd), `intersector` (mt | watertight).
+/// \brief Octree accelerator. Properties (defaults measured on the 871k dragon): `maxDepth`
+/// (16), `leafSize` (512: a node with fewer triangles is a leaf), `overlap` (bbox | exact*),
+/// `traversal` (seed | sorted | simd*), `intersector` (mt | watertight*).
+///
+/// Build (octree_build.cpp): midpoint split of the cell, triangles classified against the
+/// midplanes by their bounding boxes, the separating-axis test only for those that straddle;
+/// children built as parallel TBB tasks; subdivision stops at maxDepth, below leafSize, and
+/// when a split makes no progress or would exceed the reference budget (at most 8 references
+/// per triangle for any input). Memory: 256-byte inner nodes only, leaves live in the
+/// TriangleStore (40 bytes per reference plus 24 bytes per 16-triangle chunk).
+///
+/// Traversal (octree_traversal.cpp): every traversal culls a child whose entry distance lies
+/// beyond the closest hit so far and never stops early (except `seed`), so the first-found
+/// hit in a leaf may lie outside that leaf's cell without breaking exactness. Leaves test their
+/// triangles sixteen at a time, nearest chunk first (TriangleStore).
 class OctreeAccel : public Accel {
 public:
     /// \brief How children are visited.
