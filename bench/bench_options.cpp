@@ -1,4 +1,5 @@
 #include "bench_options.h"
+#include <nori/resolver.h>
 #include <fmt/format.h>
 #include <set>
 #include <stdexcept>
@@ -98,7 +99,7 @@ BenchOptions OptionParser::parse(int argc, char **argv) {
         else if (arg == "--json") o.jsonPath = value();
         else if (arg == "--markdown") o.markdownPath = value();
         else if (arg == "--plots") o.plotsDir = value();
-        else if (arg == "-a") o.artefactDir = value();
+        else if (arg == "-a") nori::fileResolver().append(value());  // like nori -a: where scene files are found
         else if (arg == "--python") o.python = value();
         else bad(fmt::format("unknown argument '{}' (see --help)", arg));
     }
@@ -116,11 +117,6 @@ BenchOptions OptionParser::parse(int argc, char **argv) {
         if (!given.count("--brute-rays")) o.bruteRays = 512;
     } else if (o.meshes.empty() && o.scene.empty()) {
         bad("nothing to measure: give --mesh FILE, --scene SCENE.xml or --quick (see --help)");
-    }
-    if (!o.artefactDir.empty()) {
-        if (o.jsonPath.empty()) o.jsonPath = o.artefactDir + "/bench.json";
-        if (o.markdownPath.empty()) o.markdownPath = o.artefactDir + "/bench.md";
-        if (o.plotsDir.empty()) o.plotsDir = o.artefactDir + "/plots";
     }
     return o;
 }
@@ -159,7 +155,7 @@ output
   --json FILE          results as JSON (an array when several meshes are given)
   --markdown FILE      Table 1 layout plus Embree and ratios
   --plots DIR          PNG charts (runs bench/plot.py with /usr/bin/python3)
-  -a DIR               all of them: DIR/bench.json, DIR/bench.md, DIR/plots/
+  -a DIR               look for files named in --scene in DIR too (repeatable, as for nori)
   --python EXE         interpreter for the charts (default /usr/bin/python3)
   --help               this text
 

@@ -25,7 +25,7 @@ struct BenchOptions {
     bool noBrute = false;             ///< --no-brute (extra)
     size_t bruteRays = 4096;          ///< --brute-rays: rays per set for brute force (extra)
     size_t bruteMaxTriangles = 100000;
-    std::string jsonPath, markdownPath, plotsDir, artefactDir;
+    std::string jsonPath, markdownPath, plotsDir;
     std::string python = "/usr/bin/python3";
     bool help = false;
     std::set<std::string> given;      ///< the options that appeared on the command line
