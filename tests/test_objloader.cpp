@@ -1,6 +1,7 @@
 // Tests for the OBJ parser: statements, index forms, triangulation, attribute handling
 // and error messages. File, gzip and real-mesh tests are in test_objloader_files.cpp.
 #include <gtest/gtest.h>
+#include <error_of.h>
 #include <nori/objloader.h>
 #include <cctype>
 
@@ -13,16 +14,6 @@ using Tri = std::array<uint32_t, 3>;
 
 MeshData parse(const std::string &text) { return parseObj(text, "test.obj"); }
 
-/// The message of the NoriException thrown by \p f; fails the test when nothing is thrown.
-template <typename F> std::string errorOf(F &&f) {
-    try {
-        f();
-    } catch (const NoriException &e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no NoriException thrown";
-    return {};
-}
 std::string parseError(const std::string &text) {
     return errorOf([&] { parse(text); });
 }

@@ -1,6 +1,8 @@
 // Tests for loadObjFile: plain and gzip files, I/O and decompression errors, and the real
 // meshes in NORI_SHARED_DIR (skipped when that folder is missing).
 #include <gtest/gtest.h>
+#include <error_of.h>
+#include <temp_dir.h>
 #include <nori/objloader.h>
 #include <cstdlib>
 #include <filesystem>
@@ -14,32 +16,6 @@ namespace fs = std::filesystem;
 namespace {
 
 using Tri = std::array<uint32_t, 3>;
-
-/// The message of the NoriException thrown by \p f; fails the test when nothing is thrown.
-template <typename F> std::string errorOf(F &&f) {
-    try {
-        f();
-    } catch (const NoriException &e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no NoriException thrown";
-    return {};
-}
-
-/// A fresh directory for files written by a test, removed at the end of the test.
-class TempDir {
-public:
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "nori-objtest-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        m_path = tmpl;
-    }
-    ~TempDir() { fs::remove_all(m_path); }
-    std::string file(const std::string &name) const { return (m_path / name).string(); }
-
-private:
-    fs::path m_path;
-};
 
 void writeFile(const std::string &path, const std::string &bytes) {
     std::ofstream out(path, std::ios::binary);

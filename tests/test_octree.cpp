@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nori/octree.h>
 #include <ray_sets.h>
+#include "robust_util.h"
 #include "test_geometry.h"
 #include <tbb/parallel_for.h>
 #include <atomic>
@@ -17,36 +18,7 @@ namespace {
 float uniform(pcg32 &rng) { return float(rng() >> 8) * 0x1p-24f; }
 
 /// Subdivided icosahedron on the unit sphere (closed, shared edges everywhere).
-MeshData icosphere(int levels) {
-    const float p = 1.6180339887f;
-    MeshData m;
-    m.positions = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0}, {0, -1, p}, {0, 1, p},
-                   {0, -1, -p}, {0, 1, -p}, {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
-    m.faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-               {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-               {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-    for (auto &v : m.positions) v.normalize();
-    for (int l = 0; l < levels; ++l) {
-        std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
-        auto midpoint = [&](uint32_t a, uint32_t b) {
-            auto key = std::minmax(a, b);
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
-            return mid[key] = uint32_t(m.positions.size() - 1);
-        };
-        std::vector<std::array<uint32_t, 3>> faces;
-        for (auto f : m.faces) {
-            uint32_t a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), c = midpoint(f[2], f[0]);
-            faces.push_back({f[0], a, c});
-            faces.push_back({f[1], b, a});
-            faces.push_back({f[2], c, b});
-            faces.push_back({a, b, c});
-        }
-        m.faces = faces;
-    }
-    return m;
-}
+using robust::icosphere;
 
 /// Random triangles of mixed sizes in [0,1]^3, with exact duplicates and back-to-back copies.
 MeshData soup(int count, uint64_t seed) {
