@@ -103,7 +103,6 @@ int run(const CommandLine &cl) {
     }
     if (!cl.statsJsonPath.empty()) checkOutputFolder(cl.statsJsonPath);
 
-    if (!cl.quiet) std::fprintf(stderr, "Loading %s ...\n", cl.scenePath.c_str());
     auto start = std::chrono::steady_clock::now();
     std::unique_ptr<Scene> scene = loadScene(cl.scenePath, cl.overrides);
     double totalMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
