@@ -29,6 +29,9 @@ std::string readWholeFile(const std::string &path) {
     struct stat st {};
     if (::fstat(f.fd, &st) != 0) throw NoriException("{}: cannot open: {}", path, std::strerror(errno));
     if (S_ISDIR(st.st_mode)) throw NoriException("{}: cannot open: {}", path, std::strerror(EISDIR));
+    // A device such as /dev/zero or /dev/urandom never ends: reading it would exhaust memory.
+    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode))
+        throw NoriException("{}: cannot open: is a device, not a mesh file", path);
 
     std::string buf;
     // Regular files: read exactly their size (+1 to notice growth); pipes etc.: grow as needed.
