@@ -49,8 +49,13 @@ Transform Transform::lookAt(const Point3f &origin, const Point3f &target, const 
     if (!(left.norm() > 1e-6f)) throw NoriException("lookat 'up' vector is parallel to the view direction");
     left.normalize();
     Vector3f newUp = dir.cross(left);
-    Matrix4f m;
-    m << left, newUp, dir, origin, 0, 0, 0, 1;
+    // Columns assigned one by one: the comma initializer with vector blocks trips a false
+    // -Warray-bounds in GCC 12 when Eigen vectorises it with SSE only.
+    Matrix4f m = Matrix4f::Identity();
+    m.block<3, 1>(0, 0) = left;
+    m.block<3, 1>(0, 1) = newUp;
+    m.block<3, 1>(0, 2) = dir;
+    m.block<3, 1>(0, 3) = origin;
     return Transform(m);
 }
 
