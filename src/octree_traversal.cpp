@@ -6,6 +6,9 @@
 #if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
 #include <immintrin.h>
 #define NORI_OCTREE_AVX512 1
+#elif defined(__AVX2__)
+#include <immintrin.h>
+#define NORI_OCTREE_AVX2 1
 #endif
 
 namespace nori {
@@ -117,6 +120,55 @@ struct SimdRay {
         _mm256_storeu_si256(reinterpret_cast<__m256i *>(count), _mm256_maskz_compress_epi32(mask, n));
         _mm256_storeu_ps(tnear, _mm256_maskz_compress_ps(mask, entry));
         return __builtin_popcount(mask);
+    }
+};
+#elif NORI_OCTREE_AVX2
+/// The 8-box test with AVX2: one lane per child, permuted into the ray's back-to-front octant
+/// order; the surviving lanes are packed onto the stack by a short scalar loop (AVX2 has no
+/// compress instruction).
+struct SimdRay {
+    __m256 org[3], rcpNear[3], rcpFar[3];
+    __m256i perm;
+    int neg[3];
+    unsigned octant;
+
+    explicit SimdRay(const SlabRay &s) : octant(s.octant) {
+        perm = _mm256_setr_epi32(int(7 ^ octant), int(6 ^ octant), int(5 ^ octant), int(4 ^ octant),
+                                 int(3 ^ octant), int(2 ^ octant), int(1 ^ octant), int(0 ^ octant));
+        for (int a = 0; a < 3; ++a) {
+            org[a] = _mm256_set1_ps(s.o[a]);
+            rcpNear[a] = _mm256_set1_ps(s.rcpNear[a]);
+            rcpFar[a] = _mm256_set1_ps(s.rcpFar[a]);
+            neg[a] = s.neg[a];
+        }
+    }
+    struct Interval {
+        __m256 mint, maxt;
+    };
+    static Interval interval(float mint, float maxt) { return {_mm256_set1_ps(mint), _mm256_set1_ps(maxt)}; }
+    int push(const OctreeNode &node, Interval iv, uint32_t *child, uint32_t *count, float *tnear) const {
+        __m256 t0 = iv.mint, t1 = iv.maxt;
+        for (int a = 0; a < 3; ++a) {
+            const float *box = node.box[a];
+            __m256 nearPlane = _mm256_permutevar8x32_ps(_mm256_load_ps(box + 8 * neg[a]), perm);
+            __m256 farPlane = _mm256_permutevar8x32_ps(_mm256_load_ps(box + 8 * (1 - neg[a])), perm);
+            __m256 tn = _mm256_mul_ps(_mm256_sub_ps(nearPlane, org[a]), rcpNear[a]);
+            __m256 tf = _mm256_mul_ps(_mm256_sub_ps(farPlane, org[a]), rcpFar[a]);
+            t0 = _mm256_max_ps(tn, t0);  // second operand on NaN: a NaN never narrows the interval
+            t1 = _mm256_min_ps(tf, t1);
+        }
+        unsigned mask = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ)));
+        alignas(32) float entry[8];
+        _mm256_store_ps(entry, t0);
+        int k = 0;
+        for (; mask; mask &= mask - 1) {
+            int j = __builtin_ctz(mask);
+            int c = int(unsigned(7 - j) ^ octant);
+            child[k] = node.child[c];
+            count[k] = node.count[c];
+            tnear[k++] = entry[j];
+        }
+        return k;
     }
 };
 #else

@@ -10,9 +10,13 @@
 #include <algorithm>
 #include <cstring>
 
+// Widest kernels the compiler may use: sixteen lanes with AVX-512, eight with AVX2, else scalar.
 #if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
 #include <immintrin.h>
 #define NORI_TRIANGLE_AVX512 1
+#elif defined(__AVX2__)
+#include <immintrin.h>
+#define NORI_TRIANGLE_AVX2 1
 #endif
 
 namespace nori {
@@ -241,15 +245,18 @@ unsigned chunkEntriesScalar(const TriangleRay &r, const float *rows, uint32_t n,
     return mask;
 }
 
-/// Scalar loop over a leaf: chunks in order of entry distance (ties: lower index), skipping
-/// those entered beyond the closest hit; the SIMD path visits exactly the same chunks.
-bool intersectScalar(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, Hit &best) {
-    if (n <= 16) return chunkIntersectScalar(kind, ray, rows, n, 0, best);
+/// Loop over a leaf: chunks in order of entry distance (ties: lower index), skipping those
+/// entered beyond the closest hit; every kernel width visits exactly the same chunks.
+/// \p entries and \p chunkHit have the signatures of chunkEntriesScalar / chunkIntersectScalar.
+template <typename Entries, typename ChunkHit>
+bool intersectChunks(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, Hit &best,
+                     Entries entries, ChunkHit chunkHit) {
+    if (n <= 16) return chunkHit(kind, ray, rows, n, 0, best);
     bool found = false;
     const uint32_t nc = (n + 15) / 16;
     for (uint32_t g = 0; 16 * g < nc; ++g) {
         float tn[16];
-        unsigned mask = chunkEntriesScalar(ray, rows, n, g, best.t, tn);
+        unsigned mask = entries(ray, rows, n, g, best.t, tn);
         while (mask) {
             int k = -1;
             for (unsigned m = mask; m; m &= m - 1) {
@@ -258,11 +265,177 @@ bool intersectScalar(Intersector kind, const TriangleRay &ray, const float *rows
             }
             if (tn[k] > best.t) break;
             mask &= ~(1u << k);
-            found |= chunkIntersectScalar(kind, ray, rows, n, 16 * g + uint32_t(k), best);
+            found |= chunkHit(kind, ray, rows, n, 16 * g + uint32_t(k), best);
         }
     }
     return found;
 }
+
+bool intersectScalar(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, Hit &best) {
+    return intersectChunks(kind, ray, rows, n, best, chunkEntriesScalar, chunkIntersectScalar);
+}
+
+#if NORI_TRIANGLE_AVX2
+/// Eight triangles per step: the AVX-512 kernels' twin for machines with AVX2 only. Every lane
+/// performs the scalar kernels' operations in the same order, so the answers are bit-identical.
+struct Lanes8 {
+    __m256 t, u, v;
+    unsigned valid;  ///< lanes with a hit in [mint, maxt]
+    unsigned redo;   ///< watertight lanes that need the double-precision edge functions
+};
+
+/// All-ones in the lanes whose bit is set in \p m (the mask of _mm256_maskload_ps).
+inline __m256i laneMask8(unsigned m) {
+    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(m)), bits), bits);
+}
+
+inline __m256 load8(const float *rows, uint32_t n, int row, uint32_t i, __m256i m) {
+    return _mm256_maskload_ps(rows + size_t(row) * n + i, m);
+}
+
+template <int Predicate>
+inline unsigned cmp8(__m256 a, __m256 b) {
+    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a, b, Predicate)));
+}
+
+inline __m256 mul8(__m256 a, __m256 b) { return _mm256_mul_ps(a, b); }
+inline __m256 sub8(__m256 a, __m256 b) { return _mm256_sub_ps(a, b); }
+inline __m256 add8(__m256 a, __m256 b) { return _mm256_add_ps(a, b); }
+
+inline Lanes8 mt8(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, unsigned m, float maxt) {
+    const __m256i lm = laneMask8(m);
+    const __m256 dx = _mm256_set1_ps(r.d[0]), dy = _mm256_set1_ps(r.d[1]), dz = _mm256_set1_ps(r.d[2]);
+    __m256 e1x = load8(rows, n, 3, i, lm), e1y = load8(rows, n, 4, i, lm), e1z = load8(rows, n, 5, i, lm);
+    __m256 e2x = load8(rows, n, 6, i, lm), e2y = load8(rows, n, 7, i, lm), e2z = load8(rows, n, 8, i, lm);
+    __m256 px = sub8(mul8(dy, e2z), mul8(dz, e2y));
+    __m256 py = sub8(mul8(dz, e2x), mul8(dx, e2z));
+    __m256 pz = sub8(mul8(dx, e2y), mul8(dy, e2x));
+    __m256 det = add8(add8(mul8(e1x, px), mul8(e1y, py)), mul8(e1z, pz));
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    unsigned valid = m & cmp8<_CMP_NEQ_UQ>(det, zero);
+    __m256 invDet = _mm256_div_ps(one, det);
+    __m256 tx = sub8(_mm256_set1_ps(r.o[0]), load8(rows, n, 0, i, lm));
+    __m256 ty = sub8(_mm256_set1_ps(r.o[1]), load8(rows, n, 1, i, lm));
+    __m256 tz = sub8(_mm256_set1_ps(r.o[2]), load8(rows, n, 2, i, lm));
+    __m256 u = mul8(add8(add8(mul8(tx, px), mul8(ty, py)), mul8(tz, pz)), invDet);
+    valid &= ~(cmp8<_CMP_LT_OQ>(u, zero) | cmp8<_CMP_GT_OQ>(u, one));
+    __m256 qx = sub8(mul8(ty, e1z), mul8(tz, e1y));
+    __m256 qy = sub8(mul8(tz, e1x), mul8(tx, e1z));
+    __m256 qz = sub8(mul8(tx, e1y), mul8(ty, e1x));
+    __m256 v = mul8(add8(add8(mul8(dx, qx), mul8(dy, qy)), mul8(dz, qz)), invDet);
+    valid &= ~(cmp8<_CMP_LT_OQ>(v, zero) | cmp8<_CMP_GT_OQ>(add8(u, v), one));
+    __m256 t = mul8(add8(add8(mul8(e2x, qx), mul8(e2y, qy)), mul8(e2z, qz)), invDet);
+    valid &= cmp8<_CMP_GE_OQ>(t, _mm256_set1_ps(r.mint)) & cmp8<_CMP_LE_OQ>(t, _mm256_set1_ps(maxt));
+    return {t, u, v, valid, 0};
+}
+
+inline Lanes8 watertight8(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, unsigned m, float maxt) {
+    const __m256i lm = laneMask8(m);
+    const __m256 ox = _mm256_set1_ps(r.o[r.kx]), oy = _mm256_set1_ps(r.o[r.ky]), oz = _mm256_set1_ps(r.o[r.kz]);
+    const __m256 sx = _mm256_set1_ps(r.sx), sy = _mm256_set1_ps(r.sy), sz = _mm256_set1_ps(r.sz);
+    __m256 az0 = sub8(load8(rows, n, r.kz, i, lm), oz);
+    __m256 bz0 = sub8(load8(rows, n, 3 + r.kz, i, lm), oz);
+    __m256 cz0 = sub8(load8(rows, n, 6 + r.kz, i, lm), oz);
+    __m256 ax = sub8(sub8(load8(rows, n, r.kx, i, lm), ox), mul8(sx, az0));
+    __m256 ay = sub8(sub8(load8(rows, n, r.ky, i, lm), oy), mul8(sy, az0));
+    __m256 bx = sub8(sub8(load8(rows, n, 3 + r.kx, i, lm), ox), mul8(sx, bz0));
+    __m256 by = sub8(sub8(load8(rows, n, 3 + r.ky, i, lm), oy), mul8(sy, bz0));
+    __m256 cx = sub8(sub8(load8(rows, n, 6 + r.kx, i, lm), ox), mul8(sx, cz0));
+    __m256 cy = sub8(sub8(load8(rows, n, 6 + r.ky, i, lm), oy), mul8(sy, cz0));
+    __m256 U = sub8(mul8(cx, by), mul8(cy, bx));
+    __m256 V = sub8(mul8(ax, cy), mul8(ay, cx));
+    __m256 W = sub8(mul8(bx, ay), mul8(by, ax));
+    const __m256 zero = _mm256_setzero_ps();
+    unsigned redo = m & (cmp8<_CMP_EQ_OQ>(U, zero) | cmp8<_CMP_EQ_OQ>(V, zero) | cmp8<_CMP_EQ_OQ>(W, zero));
+    unsigned neg = cmp8<_CMP_LT_OQ>(U, zero) | cmp8<_CMP_LT_OQ>(V, zero) | cmp8<_CMP_LT_OQ>(W, zero);
+    unsigned pos = cmp8<_CMP_GT_OQ>(U, zero) | cmp8<_CMP_GT_OQ>(V, zero) | cmp8<_CMP_GT_OQ>(W, zero);
+    unsigned valid = m & ~redo & ~(neg & pos);
+    if (!valid) return {U, V, W, 0, redo};  // most steps: the ray passes beside all eight
+    __m256 det = add8(add8(U, V), W);
+    valid &= cmp8<_CMP_NEQ_UQ>(det, zero);
+    __m256 T = add8(add8(mul8(U, mul8(sz, az0)), mul8(V, mul8(sz, bz0))), mul8(W, mul8(sz, cz0)));
+    __m256 invDet = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
+    __m256 t = mul8(T, invDet);
+    valid &= cmp8<_CMP_GE_OQ>(t, _mm256_set1_ps(r.mint)) & cmp8<_CMP_LE_OQ>(t, _mm256_set1_ps(maxt));
+    return {t, mul8(V, invDet), mul8(W, invDet), valid, redo};
+}
+
+inline Lanes8 test8(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, unsigned m,
+                    float maxt) {
+    return kind == Intersector::MT ? mt8(r, rows, n, i, m, maxt) : watertight8(r, rows, n, i, m, maxt);
+}
+
+/// Lanes of the 8-triangle step starting at triangle i (the tail step is partial).
+inline unsigned stepMask8(uint32_t n, uint32_t i) { return n - i >= 8 ? 0xFFu : (1u << (n - i)) - 1; }
+
+/// Closest hit over chunk k in two 8-lane steps; lexicographic minimum (t, prim) as the scalar loop.
+bool chunkIntersectAvx2(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
+                        Hit &best) {
+    bool found = false;
+    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += 8) {
+        Lanes8 l = test8(kind, ray, rows, n, i, stepMask8(n, i), best.t);
+        unsigned candidates = l.valid | l.redo;
+        if (!candidates) continue;
+        alignas(32) float ts[8], us[8], vs[8];
+        _mm256_store_ps(ts, l.t);
+        _mm256_store_ps(us, l.u);
+        _mm256_store_ps(vs, l.v);
+        for (; candidates; candidates &= candidates - 1) {
+            int j = __builtin_ctz(candidates);
+            uint32_t prim = primAt(rows, n, i + uint32_t(j));
+            float t = ts[j], u = us[j], v = vs[j];
+            // Lanes with an exactly zero edge function: the scalar kernel decides them.
+            if ((l.redo >> j) & 1u) {
+                if (!testOne(kind, ray, rows, n, i + uint32_t(j), best.t, t, u, v)) continue;
+            }
+            if (t < best.t || (t == best.t && prim < best.prim)) {
+                best = Hit{t, u, v, prim};
+                found = true;
+            }
+        }
+    }
+    return found;
+}
+
+/// The same values as chunkEntriesScalar(), eight chunk boxes per step.
+unsigned chunkEntriesAvx2(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, float tn[16]) {
+    const uint32_t nc = (n + 15) / 16;
+    const float *boxes = rows + size_t(10) * n;
+    unsigned mask = 0;
+    for (uint32_t k = 16 * g; k < std::min(nc, 16 * g + 16); k += 8) {
+        const unsigned m = stepMask8(nc, k);
+        const __m256i lm = laneMask8(m);
+        __m256 t0 = _mm256_set1_ps(r.mint), t1 = _mm256_set1_ps(maxt);
+        for (int a = 0; a < 3; ++a) {
+            __m256 o = _mm256_set1_ps(r.o[a]);
+            __m256 nearPlane = _mm256_maskload_ps(boxes + size_t(3 * r.neg[a] + a) * nc + k, lm);
+            __m256 farPlane = _mm256_maskload_ps(boxes + size_t(3 * (1 - r.neg[a]) + a) * nc + k, lm);
+            __m256 tNear = mul8(sub8(nearPlane, o), _mm256_set1_ps(r.rcpNear[a]));
+            __m256 tFar = mul8(sub8(farPlane, o), _mm256_set1_ps(r.rcpFar[a]));
+            t0 = _mm256_max_ps(tNear, t0);  // second operand on NaN or equality: as the scalar code
+            t1 = _mm256_min_ps(tFar, t1);
+        }
+        _mm256_storeu_ps(tn + (k - 16 * g), t0);
+        mask |= (m & cmp8<_CMP_LE_OQ>(t0, t1)) << (k - 16 * g);
+    }
+    return mask;
+}
+
+/// Any hit in chunk k with t in [mint, maxt].
+bool chunkOccludedAvx2(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
+                       float maxt) {
+    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += 8) {
+        Lanes8 l = test8(kind, ray, rows, n, i, stepMask8(n, i), maxt);
+        if (l.valid) return true;
+        for (unsigned redo = l.redo; redo; redo &= redo - 1) {
+            float t, u, v;
+            if (testOne(kind, ray, rows, n, i + uint32_t(__builtin_ctz(redo)), maxt, t, u, v)) return true;
+        }
+    }
+    return false;
+}
+#endif
 
 #if NORI_TRIANGLE_AVX512
 /// Sixteen triangles per step. Every lane performs exactly the scalar kernels' operations in
@@ -431,6 +604,8 @@ bool TriangleStore::intersect(const TriangleRay &ray, size_t offset, uint32_t n,
         }
     }
     return found;
+#elif NORI_TRIANGLE_AVX2
+    return intersectChunks(m_kind, ray, rows, n, best, chunkEntriesAvx2, chunkIntersectAvx2);
 #else
     return intersectScalar(m_kind, ray, rows, n, best);
 #endif
@@ -443,6 +618,9 @@ bool TriangleStore::occluded(const TriangleRay &ray, size_t offset, uint32_t n, 
 #if NORI_TRIANGLE_AVX512
         __m512 tn;
         unsigned mask = n <= 16 ? 1u : chunkEntriesSimd(ray, rows, n, g, maxt, tn);
+#elif NORI_TRIANGLE_AVX2
+        float tn[16];
+        unsigned mask = n <= 16 ? 1u : chunkEntriesAvx2(ray, rows, n, g, maxt, tn);
 #else
         float tn[16];
         unsigned mask = n <= 16 ? 1u : chunkEntriesScalar(ray, rows, n, g, maxt, tn);
@@ -457,6 +635,8 @@ bool TriangleStore::occluded(const TriangleRay &ray, size_t offset, uint32_t n, 
                 float t, u, v;
                 if (testOne(m_kind, ray, rows, n, 16 * k + uint32_t(__builtin_ctz(redo)), maxt, t, u, v)) return true;
             }
+#elif NORI_TRIANGLE_AVX2
+            if (chunkOccludedAvx2(m_kind, ray, rows, n, k, maxt)) return true;
 #else
             for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i) {
                 float t, u, v;

@@ -9,7 +9,7 @@ BUILD=$ROOT/build-fuzz
 JOBS=$(nproc 2>/dev/null || echo 2)
 
 CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNORI_FUZZ=ON \
-    -DNORI_BUILD_TESTS=OFF -DNORI_BUILD_BENCH=OFF -DNORI_NATIVE=OFF >/dev/null
+    -DNORI_BUILD_TESTS=OFF -DNORI_BUILD_BENCH=OFF -DNORI_ARCH= >/dev/null
 cmake --build "$BUILD" -j"$JOBS" --target fuzz_scene fuzz_obj
 
 # Seed corpora: the project's own scenes and meshes, good and bad.
