@@ -255,7 +255,7 @@ TEST(TriangleStore, SimdKernelsMatchScalarKernelsBitForBit) {
     std::vector<Ray3f> rays = testRays(meshes, 4000, 7);
     for (Intersector kind : {Intersector::MT, Intersector::Watertight}) {
         TriangleStore store;
-        // Leaves of every length 1..40 (full and partial 16-lane steps), then the rest.
+        // Leaves of every length 1..40 (full and partial 8- and 16-lane steps), then the rest.
         uint32_t begin = 0;
         size_t words = 0;
         std::vector<std::pair<uint32_t, uint32_t>> ranges;
