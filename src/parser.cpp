@@ -2,12 +2,15 @@
 #include <nori/resolver.h>
 #include <nori/scene.h>
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <pugixml.hpp>
 #include <set>
 #include <sstream>
+#include <vector>
 
 namespace nori {
 
@@ -52,6 +55,57 @@ TagInfo classify(const std::string &name) {
     return it == tags.end() ? TagInfo{Tag::Unknown, NoriObject::EScene} : it->second;
 }
 
+/// An element's start tag: its name and the byte offset of its '<'.
+struct StartTag {
+    std::string name;
+    size_t offset;
+};
+
+/// The elements still open before byte \p end of \p text, outermost first. Used only to explain
+/// a start/end tag mismatch that pugixml has already found (pugixml does not say which element
+/// was left open): a plain scan of tags that skips comments, processing instructions, CDATA and
+/// DOCTYPE, and ignores '>' inside quoted attribute values.
+std::vector<StartTag> openElements(const std::string &text, size_t end) {
+    auto skipPast = [&text](size_t from, const std::string &terminator) {
+        size_t k = text.find(terminator, from);
+        return k == std::string::npos ? text.size() : k + terminator.size();
+    };
+    std::vector<StartTag> open;
+    size_t i = 0;
+    while ((i = text.find('<', i)) < end) {
+        if (text.compare(i, 4, "<!--") == 0) {
+            i = skipPast(i + 4, "-->");
+        } else if (text.compare(i, 9, "<![CDATA[") == 0) {
+            i = skipPast(i + 9, "]]>");
+        } else if (text.compare(i, 2, "<?") == 0) {
+            i = skipPast(i + 2, "?>");
+        } else if (text.compare(i, 2, "<!") == 0) {
+            i = skipPast(i + 2, ">");
+        } else if (text.compare(i, 2, "</") == 0) {
+            if (!open.empty()) open.pop_back();
+            i = skipPast(i + 2, ">");
+        } else {
+            size_t nameEnd = i + 1;
+            while (nameEnd < text.size() && !std::isspace((unsigned char) text[nameEnd]) && text[nameEnd] != '>' &&
+                   text[nameEnd] != '/')
+                ++nameEnd;
+            size_t k = nameEnd;
+            for (char quote = 0; k < text.size(); ++k) {
+                if (quote) {
+                    if (text[k] == quote) quote = 0;
+                } else if (text[k] == '"' || text[k] == '\'') {
+                    quote = text[k];
+                } else if (text[k] == '>') {
+                    break;
+                }
+            }
+            if (k >= text.size() || text[k - 1] != '/') open.push_back({text.substr(i + 1, nameEnd - i - 1), i});
+            i = k + 1;
+        }
+    }
+    return open;
+}
+
 bool isTransformOperation(Tag tag) {
     return tag == Tag::Translate || tag == Tag::Scale || tag == Tag::Rotate || tag == Tag::LookAt ||
            tag == Tag::Matrix;
@@ -77,6 +131,7 @@ public:
         // pugixml reports "no document element" at the end of the file; line 1 is more useful.
         if (result.status == pugi::status_no_document_element)
             throw NoriException("{}:1: not an XML scene file (no XML element found)", m_path);
+        if (result.status == pugi::status_end_element_mismatch) explainMismatch(size_t(result.offset));
         if (!result) throw NoriException("{}: XML error: {}", where(result.offset), result.description());
         pugi::xml_node root = doc.document_element();
         if (!root) throw NoriException("{}:1: the file has no XML element", m_path);
@@ -92,9 +147,31 @@ public:
     }
 
 private:
+    /// pugixml reports a mismatch where it notices it (a wrong end tag, or the end of the
+    /// file) without naming the element left open; name it, with the line it opens on.
+    void explainMismatch(size_t offset) const {
+        size_t tag = m_text.rfind('<', std::min(offset, m_text.size() - 1));
+        if (tag != std::string::npos && m_text.compare(tag, 2, "</") == 0) {
+            std::vector<StartTag> open = openElements(m_text, tag);
+            size_t nameEnd = std::min(m_text.find_first_of(" \t\r\n>", tag + 2), m_text.size());
+            std::string endName = m_text.substr(tag + 2, nameEnd - tag - 2);
+            if (!open.empty() && open.back().name != endName)
+                throw NoriException("{}: XML error: </{}> does not close <{}> (opened on line {})", where(ptrdiff_t(tag)),
+                                    endName, open.back().name, lineOf(open.back().offset));
+        }
+        // Otherwise pugixml ran into the end of the file with elements still open.
+        std::vector<StartTag> open = openElements(m_text, m_text.size());
+        if (!open.empty())
+            throw NoriException("{}: XML error: <{}> is never closed (the file ends first)",
+                                where(ptrdiff_t(open.back().offset)), open.back().name);
+    }
+
+    size_t lineOf(size_t offset) const {
+        return size_t(std::upper_bound(m_lineStarts.begin(), m_lineStarts.end(), offset) - m_lineStarts.begin());
+    }
+
     std::string where(ptrdiff_t offset) const {
-        size_t line = size_t(std::upper_bound(m_lineStarts.begin(), m_lineStarts.end(), size_t(offset)) -
-                             m_lineStarts.begin());
+        size_t line = lineOf(size_t(offset));
         size_t col = size_t(offset) - m_lineStarts[line - 1] + 1;
         return fmt::format("{}:{}:{}", m_path, line, col);
     }

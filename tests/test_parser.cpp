@@ -87,6 +87,16 @@ TEST(Parser, OverridesReplaceSampleCountAndAccel) {
 }
 
 TEST(Parser, MalformedXml) { expectError("<scene>\n<integrator type=\"normals\">\n</scene>\n", 3, "XML error"); }
+TEST(Parser, WrongEndTagNamesTheOpenElement) {
+    expectError("<scene>\n<integrator type=\"normals\">\n</scene>\n", 3,
+                "</scene> does not close <integrator> (opened on line 2)");
+}
+TEST(Parser, EndOfFileInsideAnElementPointsAtItsStartTag) {
+    // Comments, CDATA, self-closing tags and a '>' inside a value must not confuse the search.
+    expectError("<scene>\n<!-- <bsdf> -->\n<integrator type=\"normals\"></integrator>\n<mesh type=\"obj\">\n"
+                "<string name=\"filename\" value=\"a>b.obj\"/>\n<![CDATA[ <x> ]]>\n",
+                4, "<mesh> is never closed (the file ends first)");
+}
 TEST(Parser, UnknownElement) { expectError(sceneWith("<integrator type=\"normals\"/>\n<light/>\n"), 3, "unknown element"); }
 TEST(Parser, UnknownType) {
     expectError(sceneWith("<integrator type=\"path_mis\"/>\n"), 2, "unknown integrator type 'path_mis'");
