@@ -275,97 +275,115 @@ bool intersectScalar(Intersector kind, const TriangleRay &ray, const float *rows
     return intersectChunks(kind, ray, rows, n, best, chunkEntriesScalar, chunkIntersectScalar);
 }
 
-#if NORI_TRIANGLE_AVX2
-/// Eight triangles per step: the AVX-512 kernels' twin for machines with AVX2 only. Every lane
-/// performs the scalar kernels' operations in the same order, so the answers are bit-identical.
-struct Lanes8 {
-    __m256 t, u, v;
-    unsigned valid;  ///< lanes with a hit in [mint, maxt]
-    unsigned redo;   ///< watertight lanes that need the double-precision edge functions
+#if NORI_TRIANGLE_AVX512 || NORI_TRIANGLE_AVX2
+// The SIMD kernels, written once for both widths: __m512 (sixteen lanes, AVX-512) and __m256
+// (eight lanes, AVX2). Every lane performs exactly the scalar kernels' operations in the same
+// order (no FMA in this file), so the answers are bit-identical to the scalar ones. Lane masks
+// are bit sets (bit j: lane j), in mask registers with AVX-512.
+
+#if NORI_TRIANGLE_AVX512
+using Wide = __m512;
+using LaneMask = __mmask16;  // kept in mask registers
+inline Wide splat(float x) { return _mm512_set1_ps(x); }
+inline Wide add(Wide a, Wide b) { return _mm512_add_ps(a, b); }
+inline Wide sub(Wide a, Wide b) { return _mm512_sub_ps(a, b); }
+inline Wide mul(Wide a, Wide b) { return _mm512_mul_ps(a, b); }
+inline Wide div(Wide a, Wide b) { return _mm512_div_ps(a, b); }
+template <int Predicate>
+inline LaneMask cmp(Wide a, Wide b) { return _mm512_cmp_ps_mask(a, b, Predicate); }
+/// Lanes in \p m read from \p p, the others are zero (and never read from memory).
+inline Wide loadLanes(const float *p, LaneMask m) { return _mm512_maskz_loadu_ps(m, p); }
+#else
+using Wide = __m256;
+using LaneMask = unsigned;
+inline Wide splat(float x) { return _mm256_set1_ps(x); }
+inline Wide add(Wide a, Wide b) { return _mm256_add_ps(a, b); }
+inline Wide sub(Wide a, Wide b) { return _mm256_sub_ps(a, b); }
+inline Wide mul(Wide a, Wide b) { return _mm256_mul_ps(a, b); }
+inline Wide div(Wide a, Wide b) { return _mm256_div_ps(a, b); }
+template <int Predicate>
+inline LaneMask cmp(Wide a, Wide b) { return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a, b, Predicate))); }
+inline Wide loadLanes(const float *p, LaneMask m) {
+    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_maskload_ps(p, _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(m)), bits), bits));
+}
+#endif
+
+/// One SIMD step over consecutive triangles of a leaf.
+struct Lanes {
+    Wide t, u, v;
+    LaneMask valid;  ///< lanes with a hit in [mint, maxt]
+    LaneMask redo;   ///< watertight lanes that need the double-precision edge functions
 };
 
-/// All-ones in the lanes whose bit is set in \p m (the mask of _mm256_maskload_ps).
-inline __m256i laneMask8(unsigned m) {
-    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(m)), bits), bits);
+inline Wide load(const float *rows, uint32_t n, int row, uint32_t i, LaneMask m) {
+    return loadLanes(rows + size_t(row) * n + i, m);
 }
 
-inline __m256 load8(const float *rows, uint32_t n, int row, uint32_t i, __m256i m) {
-    return _mm256_maskload_ps(rows + size_t(row) * n + i, m);
-}
-
-template <int Predicate>
-inline unsigned cmp8(__m256 a, __m256 b) {
-    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a, b, Predicate)));
-}
-
-inline __m256 mul8(__m256 a, __m256 b) { return _mm256_mul_ps(a, b); }
-inline __m256 sub8(__m256 a, __m256 b) { return _mm256_sub_ps(a, b); }
-inline __m256 add8(__m256 a, __m256 b) { return _mm256_add_ps(a, b); }
-
-inline Lanes8 mt8(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, unsigned m, float maxt) {
-    const __m256i lm = laneMask8(m);
-    const __m256 dx = _mm256_set1_ps(r.d[0]), dy = _mm256_set1_ps(r.d[1]), dz = _mm256_set1_ps(r.d[2]);
-    __m256 e1x = load8(rows, n, 3, i, lm), e1y = load8(rows, n, 4, i, lm), e1z = load8(rows, n, 5, i, lm);
-    __m256 e2x = load8(rows, n, 6, i, lm), e2y = load8(rows, n, 7, i, lm), e2z = load8(rows, n, 8, i, lm);
-    __m256 px = sub8(mul8(dy, e2z), mul8(dz, e2y));
-    __m256 py = sub8(mul8(dz, e2x), mul8(dx, e2z));
-    __m256 pz = sub8(mul8(dx, e2y), mul8(dy, e2x));
-    __m256 det = add8(add8(mul8(e1x, px), mul8(e1y, py)), mul8(e1z, pz));
-    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-    unsigned valid = m & cmp8<_CMP_NEQ_UQ>(det, zero);
-    __m256 invDet = _mm256_div_ps(one, det);
-    __m256 tx = sub8(_mm256_set1_ps(r.o[0]), load8(rows, n, 0, i, lm));
-    __m256 ty = sub8(_mm256_set1_ps(r.o[1]), load8(rows, n, 1, i, lm));
-    __m256 tz = sub8(_mm256_set1_ps(r.o[2]), load8(rows, n, 2, i, lm));
-    __m256 u = mul8(add8(add8(mul8(tx, px), mul8(ty, py)), mul8(tz, pz)), invDet);
-    valid &= ~(cmp8<_CMP_LT_OQ>(u, zero) | cmp8<_CMP_GT_OQ>(u, one));
-    __m256 qx = sub8(mul8(ty, e1z), mul8(tz, e1y));
-    __m256 qy = sub8(mul8(tz, e1x), mul8(tx, e1z));
-    __m256 qz = sub8(mul8(tx, e1y), mul8(ty, e1x));
-    __m256 v = mul8(add8(add8(mul8(dx, qx), mul8(dy, qy)), mul8(dz, qz)), invDet);
-    valid &= ~(cmp8<_CMP_LT_OQ>(v, zero) | cmp8<_CMP_GT_OQ>(add8(u, v), one));
-    __m256 t = mul8(add8(add8(mul8(e2x, qx), mul8(e2y, qy)), mul8(e2z, qz)), invDet);
-    valid &= cmp8<_CMP_GE_OQ>(t, _mm256_set1_ps(r.mint)) & cmp8<_CMP_LE_OQ>(t, _mm256_set1_ps(maxt));
+inline Lanes mtLanes(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, LaneMask m, float maxt) {
+    const Wide dx = splat(r.d[0]), dy = splat(r.d[1]), dz = splat(r.d[2]);
+    Wide e1x = load(rows, n, 3, i, m), e1y = load(rows, n, 4, i, m), e1z = load(rows, n, 5, i, m);
+    Wide e2x = load(rows, n, 6, i, m), e2y = load(rows, n, 7, i, m), e2z = load(rows, n, 8, i, m);
+    Wide px = sub(mul(dy, e2z), mul(dz, e2y));
+    Wide py = sub(mul(dz, e2x), mul(dx, e2z));
+    Wide pz = sub(mul(dx, e2y), mul(dy, e2x));
+    Wide det = add(add(mul(e1x, px), mul(e1y, py)), mul(e1z, pz));
+    const Wide zero = splat(0.0f), one = splat(1.0f);
+    LaneMask valid = m & cmp<_CMP_NEQ_UQ>(det, zero);
+    Wide invDet = div(one, det);
+    Wide tx = sub(splat(r.o[0]), load(rows, n, 0, i, m));
+    Wide ty = sub(splat(r.o[1]), load(rows, n, 1, i, m));
+    Wide tz = sub(splat(r.o[2]), load(rows, n, 2, i, m));
+    Wide u = mul(add(add(mul(tx, px), mul(ty, py)), mul(tz, pz)), invDet);
+    // Scalar: reject if (u < 0 || u > 1); ordered compares keep NaN lanes, as the scalar code does.
+    valid &= ~(cmp<_CMP_LT_OQ>(u, zero) | cmp<_CMP_GT_OQ>(u, one));
+    Wide qx = sub(mul(ty, e1z), mul(tz, e1y));
+    Wide qy = sub(mul(tz, e1x), mul(tx, e1z));
+    Wide qz = sub(mul(tx, e1y), mul(ty, e1x));
+    Wide v = mul(add(add(mul(dx, qx), mul(dy, qy)), mul(dz, qz)), invDet);
+    valid &= ~(cmp<_CMP_LT_OQ>(v, zero) | cmp<_CMP_GT_OQ>(add(u, v), one));
+    Wide t = mul(add(add(mul(e2x, qx), mul(e2y, qy)), mul(e2z, qz)), invDet);
+    valid &= cmp<_CMP_GE_OQ>(t, splat(r.mint)) & cmp<_CMP_LE_OQ>(t, splat(maxt));
     return {t, u, v, valid, 0};
 }
 
-inline Lanes8 watertight8(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, unsigned m, float maxt) {
-    const __m256i lm = laneMask8(m);
-    const __m256 ox = _mm256_set1_ps(r.o[r.kx]), oy = _mm256_set1_ps(r.o[r.ky]), oz = _mm256_set1_ps(r.o[r.kz]);
-    const __m256 sx = _mm256_set1_ps(r.sx), sy = _mm256_set1_ps(r.sy), sz = _mm256_set1_ps(r.sz);
-    __m256 az0 = sub8(load8(rows, n, r.kz, i, lm), oz);
-    __m256 bz0 = sub8(load8(rows, n, 3 + r.kz, i, lm), oz);
-    __m256 cz0 = sub8(load8(rows, n, 6 + r.kz, i, lm), oz);
-    __m256 ax = sub8(sub8(load8(rows, n, r.kx, i, lm), ox), mul8(sx, az0));
-    __m256 ay = sub8(sub8(load8(rows, n, r.ky, i, lm), oy), mul8(sy, az0));
-    __m256 bx = sub8(sub8(load8(rows, n, 3 + r.kx, i, lm), ox), mul8(sx, bz0));
-    __m256 by = sub8(sub8(load8(rows, n, 3 + r.ky, i, lm), oy), mul8(sy, bz0));
-    __m256 cx = sub8(sub8(load8(rows, n, 6 + r.kx, i, lm), ox), mul8(sx, cz0));
-    __m256 cy = sub8(sub8(load8(rows, n, 6 + r.ky, i, lm), oy), mul8(sy, cz0));
-    __m256 U = sub8(mul8(cx, by), mul8(cy, bx));
-    __m256 V = sub8(mul8(ax, cy), mul8(ay, cx));
-    __m256 W = sub8(mul8(bx, ay), mul8(by, ax));
-    const __m256 zero = _mm256_setzero_ps();
-    unsigned redo = m & (cmp8<_CMP_EQ_OQ>(U, zero) | cmp8<_CMP_EQ_OQ>(V, zero) | cmp8<_CMP_EQ_OQ>(W, zero));
-    unsigned neg = cmp8<_CMP_LT_OQ>(U, zero) | cmp8<_CMP_LT_OQ>(V, zero) | cmp8<_CMP_LT_OQ>(W, zero);
-    unsigned pos = cmp8<_CMP_GT_OQ>(U, zero) | cmp8<_CMP_GT_OQ>(V, zero) | cmp8<_CMP_GT_OQ>(W, zero);
-    unsigned valid = m & ~redo & ~(neg & pos);
-    if (!valid) return {U, V, W, 0, redo};  // most steps: the ray passes beside all eight
-    __m256 det = add8(add8(U, V), W);
-    valid &= cmp8<_CMP_NEQ_UQ>(det, zero);
-    __m256 T = add8(add8(mul8(U, mul8(sz, az0)), mul8(V, mul8(sz, bz0))), mul8(W, mul8(sz, cz0)));
-    __m256 invDet = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
-    __m256 t = mul8(T, invDet);
-    valid &= cmp8<_CMP_GE_OQ>(t, _mm256_set1_ps(r.mint)) & cmp8<_CMP_LE_OQ>(t, _mm256_set1_ps(maxt));
-    return {t, mul8(V, invDet), mul8(W, invDet), valid, redo};
+inline Lanes watertightLanes(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, LaneMask m, float maxt) {
+    const Wide ox = splat(r.o[r.kx]), oy = splat(r.o[r.ky]), oz = splat(r.o[r.kz]);
+    const Wide sx = splat(r.sx), sy = splat(r.sy), sz = splat(r.sz);
+    Wide az0 = sub(load(rows, n, r.kz, i, m), oz);
+    Wide bz0 = sub(load(rows, n, 3 + r.kz, i, m), oz);
+    Wide cz0 = sub(load(rows, n, 6 + r.kz, i, m), oz);
+    Wide ax = sub(sub(load(rows, n, r.kx, i, m), ox), mul(sx, az0));
+    Wide ay = sub(sub(load(rows, n, r.ky, i, m), oy), mul(sy, az0));
+    Wide bx = sub(sub(load(rows, n, 3 + r.kx, i, m), ox), mul(sx, bz0));
+    Wide by = sub(sub(load(rows, n, 3 + r.ky, i, m), oy), mul(sy, bz0));
+    Wide cx = sub(sub(load(rows, n, 6 + r.kx, i, m), ox), mul(sx, cz0));
+    Wide cy = sub(sub(load(rows, n, 6 + r.ky, i, m), oy), mul(sy, cz0));
+    Wide U = sub(mul(cx, by), mul(cy, bx));
+    Wide V = sub(mul(ax, cy), mul(ay, cx));
+    Wide W = sub(mul(bx, ay), mul(by, ax));
+    const Wide zero = splat(0.0f);
+    LaneMask redo = m & (cmp<_CMP_EQ_OQ>(U, zero) | cmp<_CMP_EQ_OQ>(V, zero) | cmp<_CMP_EQ_OQ>(W, zero));
+    LaneMask neg = cmp<_CMP_LT_OQ>(U, zero) | cmp<_CMP_LT_OQ>(V, zero) | cmp<_CMP_LT_OQ>(W, zero);
+    LaneMask pos = cmp<_CMP_GT_OQ>(U, zero) | cmp<_CMP_GT_OQ>(V, zero) | cmp<_CMP_GT_OQ>(W, zero);
+    LaneMask valid = m & ~redo & ~(neg & pos);
+    if (!valid) return {U, V, W, 0, redo};  // most steps: the ray passes beside every triangle
+    Wide det = add(add(U, V), W);
+    valid &= cmp<_CMP_NEQ_UQ>(det, zero);
+    Wide T = add(add(mul(U, mul(sz, az0)), mul(V, mul(sz, bz0))), mul(W, mul(sz, cz0)));
+    Wide invDet = div(splat(1.0f), det);
+    Wide t = mul(T, invDet);
+    valid &= cmp<_CMP_GE_OQ>(t, splat(r.mint)) & cmp<_CMP_LE_OQ>(t, splat(maxt));
+    return {t, mul(V, invDet), mul(W, invDet), valid, redo};
 }
 
-inline Lanes8 test8(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, unsigned m,
-                    float maxt) {
-    return kind == Intersector::MT ? mt8(r, rows, n, i, m, maxt) : watertight8(r, rows, n, i, m, maxt);
+inline Lanes testLanes(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, unsigned m,
+                       float maxt) {
+    return kind == Intersector::MT ? mtLanes(r, rows, n, i, m, maxt) : watertightLanes(r, rows, n, i, m, maxt);
 }
+#endif
 
+#if NORI_TRIANGLE_AVX2
 /// Lanes of the 8-triangle step starting at triangle i (the tail step is partial).
 inline unsigned stepMask8(uint32_t n, uint32_t i) { return n - i >= 8 ? 0xFFu : (1u << (n - i)) - 1; }
 
@@ -374,7 +392,7 @@ bool chunkIntersectAvx2(Intersector kind, const TriangleRay &ray, const float *r
                         Hit &best) {
     bool found = false;
     for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += 8) {
-        Lanes8 l = test8(kind, ray, rows, n, i, stepMask8(n, i), best.t);
+        Lanes l = testLanes(kind, ray, rows, n, i, stepMask8(n, i), best.t);
         unsigned candidates = l.valid | l.redo;
         if (!candidates) continue;
         alignas(32) float ts[8], us[8], vs[8];
@@ -405,19 +423,18 @@ unsigned chunkEntriesAvx2(const TriangleRay &r, const float *rows, uint32_t n, u
     unsigned mask = 0;
     for (uint32_t k = 16 * g; k < std::min(nc, 16 * g + 16); k += 8) {
         const unsigned m = stepMask8(nc, k);
-        const __m256i lm = laneMask8(m);
         __m256 t0 = _mm256_set1_ps(r.mint), t1 = _mm256_set1_ps(maxt);
         for (int a = 0; a < 3; ++a) {
             __m256 o = _mm256_set1_ps(r.o[a]);
-            __m256 nearPlane = _mm256_maskload_ps(boxes + size_t(3 * r.neg[a] + a) * nc + k, lm);
-            __m256 farPlane = _mm256_maskload_ps(boxes + size_t(3 * (1 - r.neg[a]) + a) * nc + k, lm);
-            __m256 tNear = mul8(sub8(nearPlane, o), _mm256_set1_ps(r.rcpNear[a]));
-            __m256 tFar = mul8(sub8(farPlane, o), _mm256_set1_ps(r.rcpFar[a]));
+            __m256 nearPlane = loadLanes(boxes + size_t(3 * r.neg[a] + a) * nc + k, m);
+            __m256 farPlane = loadLanes(boxes + size_t(3 * (1 - r.neg[a]) + a) * nc + k, m);
+            __m256 tNear = mul(sub(nearPlane, o), _mm256_set1_ps(r.rcpNear[a]));
+            __m256 tFar = mul(sub(farPlane, o), _mm256_set1_ps(r.rcpFar[a]));
             t0 = _mm256_max_ps(tNear, t0);  // second operand on NaN or equality: as the scalar code
             t1 = _mm256_min_ps(tFar, t1);
         }
         _mm256_storeu_ps(tn + (k - 16 * g), t0);
-        mask |= (m & cmp8<_CMP_LE_OQ>(t0, t1)) << (k - 16 * g);
+        mask |= (m & cmp<_CMP_LE_OQ>(t0, t1)) << (k - 16 * g);
     }
     return mask;
 }
@@ -426,7 +443,7 @@ unsigned chunkEntriesAvx2(const TriangleRay &r, const float *rows, uint32_t n, u
 bool chunkOccludedAvx2(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
                        float maxt) {
     for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += 8) {
-        Lanes8 l = test8(kind, ray, rows, n, i, stepMask8(n, i), maxt);
+        Lanes l = testLanes(kind, ray, rows, n, i, stepMask8(n, i), maxt);
         if (l.valid) return true;
         for (unsigned redo = l.redo; redo; redo &= redo - 1) {
             float t, u, v;
@@ -437,90 +454,6 @@ bool chunkOccludedAvx2(Intersector kind, const TriangleRay &ray, const float *ro
 }
 #endif
 
-#if NORI_TRIANGLE_AVX512
-/// Sixteen triangles per step. Every lane performs exactly the scalar kernels' operations in
-/// the same order (no FMA in this file), so the answers are bit-identical to the scalar ones.
-struct Lanes {
-    __m512 t, u, v;
-    __mmask16 valid;  ///< lanes with a hit in [mint, maxt]
-    __mmask16 redo;   ///< watertight lanes that need the double-precision edge functions
-};
-
-inline __m512 load(const float *rows, uint32_t n, int row, uint32_t i, __mmask16 m) {
-    return _mm512_maskz_loadu_ps(m, rows + size_t(row) * n + i);
-}
-
-inline Lanes mt16(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, __mmask16 m, float maxt) {
-    const __m512 dx = _mm512_set1_ps(r.d[0]), dy = _mm512_set1_ps(r.d[1]), dz = _mm512_set1_ps(r.d[2]);
-    __m512 e1x = load(rows, n, 3, i, m), e1y = load(rows, n, 4, i, m), e1z = load(rows, n, 5, i, m);
-    __m512 e2x = load(rows, n, 6, i, m), e2y = load(rows, n, 7, i, m), e2z = load(rows, n, 8, i, m);
-    __m512 px = _mm512_sub_ps(_mm512_mul_ps(dy, e2z), _mm512_mul_ps(dz, e2y));
-    __m512 py = _mm512_sub_ps(_mm512_mul_ps(dz, e2x), _mm512_mul_ps(dx, e2z));
-    __m512 pz = _mm512_sub_ps(_mm512_mul_ps(dx, e2y), _mm512_mul_ps(dy, e2x));
-    __m512 det = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(e1x, px), _mm512_mul_ps(e1y, py)), _mm512_mul_ps(e1z, pz));
-    const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
-    __mmask16 valid = _mm512_mask_cmp_ps_mask(m, det, zero, _CMP_NEQ_UQ);
-    __m512 invDet = _mm512_div_ps(one, det);
-    __m512 tx = _mm512_sub_ps(_mm512_set1_ps(r.o[0]), load(rows, n, 0, i, m));
-    __m512 ty = _mm512_sub_ps(_mm512_set1_ps(r.o[1]), load(rows, n, 1, i, m));
-    __m512 tz = _mm512_sub_ps(_mm512_set1_ps(r.o[2]), load(rows, n, 2, i, m));
-    __m512 u = _mm512_mul_ps(
-        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(tx, px), _mm512_mul_ps(ty, py)), _mm512_mul_ps(tz, pz)), invDet);
-    // Scalar: reject if (u < 0 || u > 1); ordered compares keep NaN lanes, as the scalar code does.
-    valid &= ~(_mm512_cmp_ps_mask(u, zero, _CMP_LT_OQ) | _mm512_cmp_ps_mask(u, one, _CMP_GT_OQ));
-    __m512 qx = _mm512_sub_ps(_mm512_mul_ps(ty, e1z), _mm512_mul_ps(tz, e1y));
-    __m512 qy = _mm512_sub_ps(_mm512_mul_ps(tz, e1x), _mm512_mul_ps(tx, e1z));
-    __m512 qz = _mm512_sub_ps(_mm512_mul_ps(tx, e1y), _mm512_mul_ps(ty, e1x));
-    __m512 v = _mm512_mul_ps(
-        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, qx), _mm512_mul_ps(dy, qy)), _mm512_mul_ps(dz, qz)), invDet);
-    valid &= ~(_mm512_cmp_ps_mask(v, zero, _CMP_LT_OQ) | _mm512_cmp_ps_mask(_mm512_add_ps(u, v), one, _CMP_GT_OQ));
-    __m512 t = _mm512_mul_ps(
-        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(e2x, qx), _mm512_mul_ps(e2y, qy)), _mm512_mul_ps(e2z, qz)), invDet);
-    valid &= _mm512_cmp_ps_mask(t, _mm512_set1_ps(r.mint), _CMP_GE_OQ) &
-             _mm512_cmp_ps_mask(t, _mm512_set1_ps(maxt), _CMP_LE_OQ);
-    return {t, u, v, valid, 0};
-}
-
-inline Lanes watertight16(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, __mmask16 m, float maxt) {
-    const __m512 ox = _mm512_set1_ps(r.o[r.kx]), oy = _mm512_set1_ps(r.o[r.ky]), oz = _mm512_set1_ps(r.o[r.kz]);
-    const __m512 sx = _mm512_set1_ps(r.sx), sy = _mm512_set1_ps(r.sy), sz = _mm512_set1_ps(r.sz);
-    __m512 az0 = _mm512_sub_ps(load(rows, n, r.kz, i, m), oz);
-    __m512 bz0 = _mm512_sub_ps(load(rows, n, 3 + r.kz, i, m), oz);
-    __m512 cz0 = _mm512_sub_ps(load(rows, n, 6 + r.kz, i, m), oz);
-    __m512 ax = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, r.kx, i, m), ox), _mm512_mul_ps(sx, az0));
-    __m512 ay = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, r.ky, i, m), oy), _mm512_mul_ps(sy, az0));
-    __m512 bx = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, 3 + r.kx, i, m), ox), _mm512_mul_ps(sx, bz0));
-    __m512 by = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, 3 + r.ky, i, m), oy), _mm512_mul_ps(sy, bz0));
-    __m512 cx = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, 6 + r.kx, i, m), ox), _mm512_mul_ps(sx, cz0));
-    __m512 cy = _mm512_sub_ps(_mm512_sub_ps(load(rows, n, 6 + r.ky, i, m), oy), _mm512_mul_ps(sy, cz0));
-    __m512 U = _mm512_sub_ps(_mm512_mul_ps(cx, by), _mm512_mul_ps(cy, bx));
-    __m512 V = _mm512_sub_ps(_mm512_mul_ps(ax, cy), _mm512_mul_ps(ay, cx));
-    __m512 W = _mm512_sub_ps(_mm512_mul_ps(bx, ay), _mm512_mul_ps(by, ax));
-    const __m512 zero = _mm512_setzero_ps();
-    __mmask16 redo = _mm512_mask_cmp_ps_mask(m, U, zero, _CMP_EQ_OQ) | _mm512_mask_cmp_ps_mask(m, V, zero, _CMP_EQ_OQ) |
-                     _mm512_mask_cmp_ps_mask(m, W, zero, _CMP_EQ_OQ);
-    __mmask16 neg = _mm512_cmp_ps_mask(U, zero, _CMP_LT_OQ) | _mm512_cmp_ps_mask(V, zero, _CMP_LT_OQ) |
-                    _mm512_cmp_ps_mask(W, zero, _CMP_LT_OQ);
-    __mmask16 pos = _mm512_cmp_ps_mask(U, zero, _CMP_GT_OQ) | _mm512_cmp_ps_mask(V, zero, _CMP_GT_OQ) |
-                    _mm512_cmp_ps_mask(W, zero, _CMP_GT_OQ);
-    __mmask16 valid = m & ~redo & ~(neg & pos);
-    if (!valid) return {U, V, W, 0, redo};  // most steps: the ray passes beside all sixteen
-    __m512 det = _mm512_add_ps(_mm512_add_ps(U, V), W);
-    valid &= _mm512_cmp_ps_mask(det, zero, _CMP_NEQ_UQ);
-    __m512 T = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(U, _mm512_mul_ps(sz, az0)), _mm512_mul_ps(V, _mm512_mul_ps(sz, bz0))),
-                             _mm512_mul_ps(W, _mm512_mul_ps(sz, cz0)));
-    __m512 invDet = _mm512_div_ps(_mm512_set1_ps(1.0f), det);
-    __m512 t = _mm512_mul_ps(T, invDet);
-    valid &= _mm512_cmp_ps_mask(t, _mm512_set1_ps(r.mint), _CMP_GE_OQ) &
-             _mm512_cmp_ps_mask(t, _mm512_set1_ps(maxt), _CMP_LE_OQ);
-    return {t, _mm512_mul_ps(V, invDet), _mm512_mul_ps(W, invDet), valid, redo};
-}
-
-inline Lanes test16(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, __mmask16 m,
-                    float maxt) {
-    return kind == Intersector::MT ? mt16(r, rows, n, i, m, maxt) : watertight16(r, rows, n, i, m, maxt);
-}
-#endif
 } // namespace
 
 #if NORI_TRIANGLE_AVX512
@@ -535,7 +468,7 @@ bool chunkIntersectSimd(Intersector kind, const TriangleRay &ray, const float *r
     const uint32_t i = 16 * k;
     const float *prims = rows + size_t(9) * n;
     __mmask16 m = n - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - i)) - 1);
-    Lanes l = test16(kind, ray, rows, n, i, m, best.t);
+    Lanes l = testLanes(kind, ray, rows, n, i, m, best.t);
     bool found = false;
     // Rare watertight lanes with an exactly zero edge function: the scalar kernel
     // (double-precision fallback) decides them one by one.
@@ -629,7 +562,7 @@ bool TriangleStore::occluded(const TriangleRay &ray, size_t offset, uint32_t n, 
             uint32_t k = 16 * g + uint32_t(__builtin_ctz(mask));
 #if NORI_TRIANGLE_AVX512
             __mmask16 m = n - 16 * k >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - 16 * k)) - 1);
-            Lanes l = test16(m_kind, ray, rows, n, 16 * k, m, maxt);
+            Lanes l = testLanes(m_kind, ray, rows, n, 16 * k, m, maxt);
             if (l.valid) return true;
             for (unsigned redo = l.redo; redo; redo &= redo - 1) {
                 float t, u, v;
