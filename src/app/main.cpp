@@ -1,5 +1,5 @@
 /// The `nori` command: load a scene, build its accelerator, render, write EXR + PNG.
-#include <nori/options.h>
+#include "options.h"
 #include <nori/renderer.h>
 #include <nori/resolver.h>
 #include <nori/scene.h>

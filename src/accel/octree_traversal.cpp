@@ -1,5 +1,5 @@
 // Octree traversals: simd (default, exact), sorted (exact), seed (inexact, for comparison).
-#include <nori/octree.h>
+#include "octree.h"
 #include <algorithm>
 #include <cmath>
 

@@ -3,7 +3,7 @@
 // bit-identical: hit/miss, triangle, t, u, v), plus property handling, statistics and bounded
 // builds on pathological inputs.
 #include <gtest/gtest.h>
-#include <nori/octree.h>
+#include "accel/octree.h"
 #include <ray_sets.h>
 #include "robust_util.h"
 #include "test_geometry.h"

@@ -1,5 +1,5 @@
 // Octree accelerator: properties, dispatch and statistics.
-#include <nori/octree.h>
+#include "octree.h"
 
 namespace nori {
 

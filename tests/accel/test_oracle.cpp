@@ -18,7 +18,7 @@
 // of the ray origin, the hit points and t |d|. All geometry of the rule is evaluated in double.
 #include <gtest/gtest.h>
 #include <nori/objloader.h>
-#include <nori/octree.h>
+#include "accel/octree.h"
 #include <embree_oracle.h>
 #include "test_geometry.h"
 #include <ray_sets.h>

@@ -3,7 +3,7 @@
 /// with tight child boxes, flat node storage and several traversals.
 #pragma once
 
-#include <nori/triangle.h>
+#include "triangle.h"
 #include <string>
 #include <vector>
 

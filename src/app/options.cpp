@@ -1,5 +1,5 @@
 #include <nori/object.h>
-#include <nori/options.h>
+#include "options.h"
 #include <charconv>
 #include <filesystem>
 

@@ -1,5 +1,5 @@
 // Separating-axis triangle/box test after Akenine-Möller 2001 (own implementation).
-#include <nori/triangle_box.h>
+#include "triangle_box.h"
 #include <cmath>
 
 namespace nori {

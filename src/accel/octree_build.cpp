@@ -1,7 +1,7 @@
 // Octree construction: a parallel recursive split into a temporary tree, then a parallel
 // flattening into the node array and the triangle store.
-#include <nori/octree.h>
-#include <nori/triangle_box.h>
+#include "octree.h"
+#include "triangle_box.h"
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 #include <algorithm>

@@ -1,5 +1,5 @@
 /// Brute-force accelerator: tests every triangle. Reference and baseline only.
-#include <nori/triangle.h>
+#include "triangle.h"
 
 namespace nori {
 

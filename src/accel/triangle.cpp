@@ -5,7 +5,7 @@
 // reports once inlined here; the value is never read.
 #pragma GCC diagnostic ignored "-Wuninitialized"
 
-#include <nori/triangle.h>
+#include "triangle.h"
 #include <cmath>
 #include <algorithm>
 #include <cstring>
