@@ -1,5 +1,5 @@
 /// \file bsdf.h
-/// \brief Surface scattering model interface.
+/// \brief Surface scattering model interface (Nori's contract: eval, pdf, sample).
 #pragma once
 
 #include <nori/color.h>
@@ -7,11 +7,45 @@
 
 namespace nori {
 
-/// \brief A BSDF evaluated in the local shading frame (z = normal).
+/// \brief The measure a BSDF value or density is expressed in.
+enum class EMeasure {
+    Unknown,     ///< not yet known (a record about to be sampled)
+    SolidAngle,  ///< smooth scattering: densities per steradian
+    Discrete,    ///< Dirac (specular) scattering: probabilities of single directions
+};
+
+/// \brief Query for a BSDF: directions in the local shading frame (z = shading normal), both
+/// pointing away from the surface. \c wi is where the light-transport path comes from (the
+/// camera side), \c wo where it continues.
+struct BSDFQueryRecord {
+    Vector3f wi;
+    Vector3f wo;
+    /// \brief Relative index of refraction along the sampled direction (eta_incident / eta_transmitted;
+    /// 1 for reflection). Path tracers use it for Russian roulette.
+    float eta = 1.0f;
+    EMeasure measure = EMeasure::Unknown;
+
+    /// \brief A record for sampling: only \p wi is known.
+    explicit BSDFQueryRecord(const Vector3f &wi) : wi(wi) {}
+    /// \brief A record for evaluating the pair (\p wi, \p wo) in \p measure.
+    BSDFQueryRecord(const Vector3f &wi, const Vector3f &wo, EMeasure measure) : wi(wi), wo(wo), measure(measure) {}
+};
+
+/// \brief A BSDF evaluated in the local shading frame.
 class BSDF : public NoriObject {
 public:
-    /// \brief BSDF value for incident \p wi and outgoing \p wo (both local, unit length).
-    virtual Color3f eval(const Vector3f &wi, const Vector3f &wo) const = 0;
+    /// \brief Sample \c wo given \c bRec.wi and a uniform 2D \p sample; fills wo, measure and eta.
+    /// Returns the importance weight eval * cos(theta_o) / pdf (no cosine for discrete measure),
+    /// or zero when sampling failed.
+    virtual Color3f sample(BSDFQueryRecord &bRec, const Point2f &sample) const = 0;
+    /// \brief BSDF value for the pair in \c bRec (zero for a discrete BSDF).
+    virtual Color3f eval(const BSDFQueryRecord &bRec) const = 0;
+    /// \brief Density of sample() producing \c bRec.wo, in \c bRec.measure (zero for a discrete BSDF).
+    virtual float pdf(const BSDFQueryRecord &bRec) const = 0;
+    /// \brief Smooth scattering that emitter sampling can handle (diffuse, microfacet); false for
+    /// specular (Dirac) BSDFs.
+    virtual bool isDiffuse() const { return false; }
+
     EClassType getClassType() const override { return EBSDF; }
 };
 
