@@ -100,6 +100,27 @@ public:
     Traversal traversal() const { return m_traversal; }
     BuildRule buildRule() const { return m_buildRule; }
 
+    /// \brief One inner node as the tests inspect it: where it is, the reference that leads to
+    /// it (OctreeNode::innerRef: pattern and kept count) and its depth in nodes (root 0).
+    struct NodeView {
+        uint32_t index, ref;
+        int depth;
+        const OctreeNode &node;
+    };
+    /// \brief Call \p visit for every inner node, parents before children.
+    template <typename Visit> void forEachNode(Visit visit) const {
+        if (m_nodes.empty()) return;
+        std::vector<std::pair<uint32_t, std::pair<uint32_t, int>>> stack{{0u, {m_rootCount, 0}}};
+        while (!stack.empty()) {
+            auto [index, refDepth] = stack.back();
+            stack.pop_back();
+            const OctreeNode &node = m_nodes[index];
+            visit(NodeView{index, refDepth.first, refDepth.second, node});
+            for (int c = 0; c < 8; ++c)
+                if (node.count[c] & OctreeNode::kInner) stack.push_back({node.child[c], {node.count[c], refDepth.second + 1}});
+        }
+    }
+
     /// \brief Deepest allowed level (the root is level 0); clamped to kMaxDepthLimit.
     static constexpr int kMaxDepthLimit = 32;
 

@@ -7,6 +7,7 @@
 #include <tbb/task_group.h>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace nori::octree_build {
 
@@ -25,18 +26,21 @@ constexpr double kSahRefBudget = 1.5;
 
 /// Surface-area cost model (Goldsmith & Salmon 1987; MacDonald & Booth 1990): a ray that
 /// enters a box of area A enters a box of area a inside it with probability a / A. The unit is
-/// one inner-node visit (one eight-box slab test and its stack pushes); the other costs are in
-/// the same unit, measured with callgrind on the traversal (bench/README.md).
+/// one inner-node visit (one eight-box slab test and its stack pushes). A sampling profile of
+/// the AVX-512 build (perf, cpu-clock, generated city) put one sixteen-lane triangle chunk at
+/// about three node visits; a sweep of kChunk from 0.5 to 8 moved nori-bench's ratios less
+/// than the machine's noise (bench/README.md).
 struct Cost {
     static constexpr double kNode = 1.0;        ///< visiting an inner node
-    static constexpr double kChunk = 2.0;       ///< sixteen ray/triangle tests
+    static constexpr double kChunk = 3.0;       ///< sixteen ray/triangle tests
     static constexpr double kChunkBoxes = 1.0;  ///< sixteen chunk boxes of a leaf above 16 triangles
 
     /// Testing a list of n triangles (a leaf or a kept list) once the ray reaches it.
     static double list(size_t n) {
         if (n == 0) return 0.0;
         size_t chunks = (n + 15) / 16;
-        return chunks == 1 ? kChunk : kChunkBoxes * double((chunks + 15) / 16) + kChunk * double(chunks);
+        return chunks == 1 ? kChunk
+                           : kChunkBoxes * double((chunks + 15) / 16) + kChunk * double(chunks);
     }
 };
 
@@ -52,7 +56,7 @@ double area(const BoundingBox3f &b) {
 /// 1000 x 3 x 25 strip eight slabs along its length, and no cell ever becomes a thin slab that
 /// every triangle crosses. Each node still has eight children, so the eight-box test stays
 /// fully used. The other rules split x, y and z once each: the classic octree.
-OctreeNode::Pattern splitPattern(Rule rule, const BoundingBox3f &cell) {
+OctreeNode::Pattern patternFor(Rule rule, const BoundingBox3f &cell) {
     OctreeNode::Pattern p{{0, 1, 2}};
     if (rule != Rule::Sah) return p;
     Vector3f e = cell.extents();
@@ -65,7 +69,7 @@ OctreeNode::Pattern splitPattern(Rule rule, const BoundingBox3f &cell) {
 }
 
 /// Cell of child slot \p c of \p cell: bit 2 - l of c selects the upper half of bisection l.
-BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c) {
+BoundingBox3f cellOf(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c) {
     BoundingBox3f b = cell;
     for (int level = 0; level < 3; ++level) {
         int a = p.axis[level];
@@ -128,9 +132,14 @@ struct Classifier {
         unsigned m = 0xFFu;
         for (int a = 0; a < 3; ++a) {
             int first = 0, last = 0;
-            for (int k = 0; k < planes[a]; ++k) {
-                first += plane[a][k] < b.min[a];
-                last += plane[a][k] <= b.max[a];
+            if (planes[a] == 1) {  // the common case: one bisection of this axis
+                first = plane[a][0] < b.min[a];
+                last = plane[a][0] <= b.max[a];
+            } else {
+                for (int k = 0; k < planes[a]; ++k) {
+                    first += plane[a][k] < b.min[a];
+                    last += plane[a][k] <= b.max[a];
+                }
             }
             m &= range[a][first][last];
         }
@@ -138,9 +147,6 @@ struct Classifier {
     }
 };
 
-BoundingBox3f clipped(const BoundingBox3f &b, const BoundingBox3f &cell) {
-    return BoundingBox3f(b.min.cwiseMax(cell.min), b.max.cwiseMin(cell.max));
-}
 
 std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
                                 std::vector<uint32_t> &refs, int depth, double budget);
@@ -210,7 +216,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     OctreeNode::Pattern pattern{{0, 1, 2}};
     BoundingBox3f cells[8];
     std::vector<uint8_t> masks(n);
-    std::unique_ptr<Classifier> classifier;
+    std::optional<Classifier> classifier;
 
     // Which child cells a triangle touches: its bounding box against the cells (closed: a box
     // touching a plane goes to both sides), refined by the SAT only for straddling triangles;
@@ -223,9 +229,9 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         masks[i] = uint8_t(mask);
     };
     for (;;) {
-        pattern = splitPattern(in.rule, cell);
-        for (int c = 0; c < 8; ++c) cells[c] = childCell(cell, pattern, c);
-        classifier = std::make_unique<Classifier>(cell, pattern, cells);
+        pattern = patternFor(in.rule, cell);
+        for (int c = 0; c < 8; ++c) cells[c] = cellOf(cell, pattern, c);
+        classifier.emplace(cell, pattern, cells);
         if (n > 8 * kParallelRefs)
             tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t> &r) {
                 for (size_t i = r.begin(); i != r.end(); ++i) classify(i);
@@ -258,7 +264,14 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                 int c = __builtin_ctz(m);
                 ++counts[c];
                 // A loose triangle's part that matters lies in this node's box (by induction).
-                boxes[c].expandBy(clipped(b, ids[i] & kLooseBit ? box : cells[c]));
+                const BoundingBox3f &r = ids[i] & kLooseBit ? box : cells[c];
+                BoundingBox3f &o = boxes[c];
+                for (int a = 0; a < 3; ++a) {
+                    float lo = b.min[a] > r.min[a] ? b.min[a] : r.min[a];
+                    float hi = b.max[a] < r.max[a] ? b.max[a] : r.max[a];
+                    o.min[a] = lo < o.min[a] ? lo : o.min[a];
+                    o.max[a] = hi > o.max[a] ? hi : o.max[a];
+                }
             }
         }
     };
@@ -266,36 +279,63 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     const double boxArea = area(box);
     auto probability = [&](int c) { return boxArea > 0.0 ? area(boxes[c]) / boxArea : 1.0; };
 
-    // Large triangles stay in the node (`sah`). Copied into the children a triangle costs
-    // about the sum of P(child) over the children it touches (in units of one triangle test);
-    // kept, it costs one test for every ray that reaches the node (P = 1). So triangles whose
-    // children's probabilities add up to more than one are kept -- a ground plane under a
-    // city, a wall of a room, a blade crossing many cells -- when together they save more
-    // than the kept list costs (at least one chunk of sixteen tests). This is the cost-model
-    // form of storing objects at the level that matches their size instead of copying them
-    // into every cell (Ulrich 2000; Havran 2000, "Heuristic ray shooting algorithms", 4.4).
+    // Large triangles stay in the node (`sah`), tested before its children by every ray that
+    // reaches it. In units of the cost model, per triangle t (w: one triangle test, a
+    // sixteenth of a chunk):
+    //  - copied down, t costs sum over its children c of P(c) * w, and a ray that hits t must
+    //    first descend to one of its leaves, about D more node visits (D: the levels this
+    //    subtree will have, log8 of its chunks); a ray hits t with probability about
+    //    2 area(t) / A(node box) (Cauchy: a flat convex surface's mean projected area);
+    //  - kept, t costs w for every ray that reaches the node.
+    // Keeping a set K saves sum over K of sum P(c) * w, plus D * kNode for the rays that hit
+    // one of K -- with probability at most min(1, sum over K of P(hit t)), since overlapping
+    // or stacked triangles are hit by the same rays -- and costs the kept list (all its chunks,
+    // at least one). The candidates (sum P(c) * w + P(hit t) * D * kNode > w) are taken in
+    // decreasing order of that benefit and the best prefix is kept, if it saves anything: a
+    // ground plane under a city or a table, the walls of a room, the backdrop of a studio,
+    // never a small triangle of a scanned mesh high in the tree. This is the cost-model form
+    // of storing objects at the level that matches their size instead of copying them into
+    // every cell (Ulrich 2000, "Loose octrees"; Havran 2000, "Heuristic ray shooting
+    // algorithms", 4.4).
     std::vector<uint32_t> kept;
     if (sah && n > 16) {
+        const double w = Cost::kChunk / 16.0;
+        const double descent = std::max(1.0, std::log(double(n) / 16.0) / std::log(8.0)) * Cost::kNode;
         double p[8];
         for (int c = 0; c < 8; ++c) p[c] = probability(c);
-        double saving = 0.0;
-        std::vector<size_t> chosen;
+        struct Candidate {
+            double copies, hit;
+            size_t i;
+        };
+        std::vector<Candidate> candidates;
         for (size_t i = 0; i < n; ++i) {
             unsigned m = masks[i];
             if (!(m & (m - 1))) continue;
-            double sum = 0.0;
-            for (; m; m &= m - 1) sum += p[__builtin_ctz(m)];
-            if (sum > 1.0) {
-                chosen.push_back(i);
-                saving += sum;
+            double copies = 0.0;
+            for (; m; m &= m - 1) copies += p[__builtin_ctz(m)];
+            const auto &v = in.vertices[ids[i] & ~kLooseBit];
+            double hit = boxArea > 0.0 ? std::min(1.0, double((v[1] - v[0]).cross(v[2] - v[0]).norm()) / boxArea) : 0.0;
+            if (copies * w + hit * descent > w) candidates.push_back({copies * w, hit, i});
+        }
+        std::sort(candidates.begin(), candidates.end(), [&](const Candidate &a, const Candidate &b) {
+            return a.copies + a.hit * descent > b.copies + b.hit * descent;
+        });
+        double copies = 0.0, hit = 0.0, bestSaving = 0.0;
+        size_t best = 0;
+        for (size_t k = 0; k < candidates.size() && k < OctreeNode::kKeptMask; ++k) {
+            copies += candidates[k].copies;
+            hit += candidates[k].hit;
+            double saving = copies + std::min(1.0, hit) * descent - Cost::list(k + 1);
+            if (saving > bestSaving + 1e-9) {
+                bestSaving = saving;
+                best = k + 1;
             }
         }
-        if (!chosen.empty() && chosen.size() <= OctreeNode::kKeptMask &&
-            saving * (Cost::kChunk / 16.0) > Cost::list(chosen.size()) + 1e-9) {
-            kept.reserve(chosen.size());
-            for (size_t i : chosen) {
-                kept.push_back(ids[i] & ~kLooseBit);
-                masks[i] = 0;
+        if (best > 0) {
+            kept.reserve(best);
+            for (size_t k = 0; k < best; ++k) {
+                kept.push_back(ids[candidates[k].i] & ~kLooseBit);
+                masks[candidates[k].i] = 0;
             }
             gather();
         }
@@ -371,6 +411,10 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
 }
 
 } // namespace
+
+OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3f &cell) { return patternFor(rule, cell); }
+
+BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c) { return cellOf(cell, p, c); }
 
 std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
                                     const std::vector<uint32_t> &refs) {

@@ -35,6 +35,11 @@ struct TempNode {
     size_t subtreeWords = 0;  ///< TriangleStore words of this subtree
 };
 
+/// \brief The bisections that make the children of \p cell under \p rule (see
+/// OctreeNode::Pattern), and the cell of child slot \p c.
+OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3f &cell);
+BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c);
+
 /// \brief Subdivide \p cell (holding the triangles \p refs, whose clipped bounds are \p box),
 /// the root at depth 0. Returns null when the root is best left a single leaf.
 std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
