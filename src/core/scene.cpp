@@ -1,3 +1,5 @@
+/// \file scene.cpp
+/// \brief The scene: collects its children, builds the accelerator, counts rays.
 #include <nori/scene.h>
 
 namespace nori {
@@ -5,7 +7,7 @@ namespace nori {
 namespace {
 // Per-thread counter: a block is rendered by one thread, so the renderer can attribute
 // rays to blocks without contended atomics.
-thread_local uint64_t t_rayCount = 0;
+thread_local Scene::RayCounts t_rayCounts;
 
 template <typename T> std::unique_ptr<T> downcast(std::unique_ptr<NoriObject> object) {
     return std::unique_ptr<T>(static_cast<T *>(object.release()));
@@ -15,15 +17,15 @@ template <typename T> std::unique_ptr<T> downcast(std::unique_ptr<NoriObject> ob
 Scene::Scene(const PropertyList &) {}
 Scene::~Scene() = default;
 
-uint64_t Scene::threadRayCount() { return t_rayCount; }
+Scene::RayCounts Scene::threadRayCounts() { return t_rayCounts; }
 
 bool Scene::rayIntersect(const Ray3f &ray, Intersection &its) const {
-    ++t_rayCount;
+    ++t_rayCounts.closestHit;
     return m_accel->rayIntersect(ray, its, false);
 }
 
 bool Scene::rayIntersect(const Ray3f &ray) const {
-    ++t_rayCount;
+    ++t_rayCounts.shadow;
     return m_accel->occluded(ray);
 }
 
@@ -33,6 +35,9 @@ void Scene::addChild(std::unique_ptr<NoriObject> child) {
     };
     switch (child->getClassType()) {
     case EMesh: m_meshes.push_back(downcast<Mesh>(std::move(child))); break;
+    case EEmitter:
+        throw NoriException("{}: an <emitter> must be nested in the <mesh> it covers (only area lights exist)",
+                            child->location());
     case EAccel:
         if (m_accel) duplicate("an accel");
         m_accel = downcast<Accel>(std::move(child));
@@ -57,7 +62,10 @@ void Scene::activate() {
     if (!m_camera) throw NoriException("{}: the scene has no <camera>", location());
     if (!m_integrator) throw NoriException("{}: the scene has no <integrator>", location());
     if (!m_accel || !m_sampler) throw NoriException("{}: internal error: no accel or sampler", location());
-    for (const auto &mesh : m_meshes) m_accel->addMesh(mesh.get());
+    for (const auto &mesh : m_meshes) {
+        m_accel->addMesh(mesh.get());
+        if (mesh->emitter()) m_emitters.push_back(mesh->emitter());
+    }
     m_accel->build();
     m_integrator->preprocess(*this);
 }
