@@ -71,6 +71,11 @@ void OutputSet::check(const std::vector<std::string> &paths) {
         if (ec) key = fs::absolute(path).lexically_normal().string();
         if (!seen.insert(key).second) throw NoriException("{}: given for two outputs at once", path);
     }
+    // An output named like another one's temporary file ("x.exr.tmp-...") would be overwritten by it.
+    for (const std::string &a : seen)
+        for (const std::string &b : seen)
+            if (b.size() > a.size() && b.compare(0, a.size() + 5, a + ".tmp-") == 0)
+                throw NoriException("{}: named like the temporary file of the output {}", b, a);
 }
 
 void OutputSet::add(const std::string &path, std::string_view bytes) {

@@ -56,6 +56,19 @@ void expectNoTemporaries(const fs::path &dir) {
     for (const std::string &name : listing(dir)) EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
 }
 
+/// A render to \p dir/out over earlier images, with the test hook raising \p signals while writing.
+ToolRun renderWithSignals(const TempDir &dir, const std::string &signals, std::vector<std::string> extraArgs = {}) {
+    std::string scene = writeScene(dir.path());
+    dir.write("out.exr", "earlier exr");
+    dir.write("out.png", "earlier png");
+    ToolSetup hook;
+    hook.env = {"NORI_TEST_SIGNALS_WHILE_WRITING=" + signals};
+    std::vector<std::string> args = {"-q", "-o", dir.file("out")};
+    args.insert(args.end(), extraArgs.begin(), extraArgs.end());
+    args.push_back(scene);
+    return runTool(kNori, args, hook);
+}
+
 } // namespace
 
 TEST(CliOutputs, OutputNamesWithoutAFileNameAreRefusedBeforeAnyWork) {
@@ -86,7 +99,8 @@ TEST(CliOutputs, StatsJsonOnAFolderOrOnAnImageIsRefusedBeforeTheRender) {
     fs::create_directory(dir.path() / "stats");
     const std::vector<std::pair<std::string, std::string>> cases = {
         {dir.file("stats"), "is a folder"}, {dir.file("out.exr"), "given for two outputs at once"},
-        {dir.file("./out.png"), "given for two outputs at once"}, {dir.file("out-partial.exr"), "two outputs"}};
+        {dir.file("./out.png"), "given for two outputs at once"}, {dir.file("out-partial.exr"), "two outputs"},
+        {dir.file("out.png.tmp-1-0"), "named like the temporary file of the output"}};
     for (const auto &[stats, message] : cases) {
         SCOPED_TRACE(stats);
         ToolRun r = runTool(kNori, {"-q", "-o", dir.file("out"), "--stats-json", stats, scene});
@@ -104,17 +118,20 @@ TEST(CliOutputs, MissingSceneInMissingFolderNamesTheScene) {
     EXPECT_EQ(r.err, "nori: /nonexistent-folder/scene.xml: cannot open: No such file or directory\n");
 }
 
+// /dev/zero never ends and /dev/stdin may be a pipe: refused before they are opened.
+TEST(CliInputs, DeviceAsSceneIsRefusedAtOnce) {
+    TempDir dir;
+    ToolRun r = runTool(kNori, {"-q", "-o", dir.file("out"), "/dev/zero"});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "nori: /dev/zero: cannot open: is a device, not a scene file\n");
+}
+
 // The hook raises the signals after the EXR went to its temporary file and before the PNG.
 TEST(CliOutputs, OneSignalWhileWritingCompletesTheWrite) {
     for (const auto &[signals, status] : std::vector<std::pair<std::string, int>>{{"INT", 130}, {"TERM", 143}}) {
         SCOPED_TRACE(signals);
         TempDir dir;
-        std::string scene = writeScene(dir.path());
-        dir.write("out.exr", "earlier exr");
-        dir.write("out.png", "earlier png");
-        ToolSetup hook;
-        hook.env = {"NORI_TEST_SIGNALS_WHILE_WRITING=" + signals};
-        ToolRun r = runTool(kNori, {"-q", "-o", dir.file("out"), "--stats-json", dir.file("s.json"), scene}, hook);
+        ToolRun r = renderWithSignals(dir, signals, {"--stats-json", dir.file("s.json")});
         EXPECT_TRUE(r.exited);
         EXPECT_EQ(r.code, status) << r.err;
         EXPECT_NE(r.err.find("the outputs were written completely"), std::string::npos) << r.err;
@@ -129,12 +146,7 @@ TEST(CliOutputs, SecondSignalWhileWritingLeavesEarlierOutputsAndNoTemporary) {
     for (const std::string signals : {"INT,INT", "TERM,INT", "HUP,TERM"}) {
         SCOPED_TRACE(signals);
         TempDir dir;
-        std::string scene = writeScene(dir.path());
-        dir.write("out.exr", "earlier exr");
-        dir.write("out.png", "earlier png");
-        ToolSetup hook;
-        hook.env = {"NORI_TEST_SIGNALS_WHILE_WRITING=" + signals};
-        ToolRun r = runTool(kNori, {"-q", "-o", dir.file("out"), scene}, hook);
+        ToolRun r = renderWithSignals(dir, signals);
         EXPECT_TRUE(r.exited);
         EXPECT_GE(r.code, 129) << r.err;
         EXPECT_EQ(readFile(dir.path() / "out.exr"), "earlier exr");
