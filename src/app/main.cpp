@@ -1,8 +1,10 @@
 /// The `nori` command: load a scene, build its accelerator, render, write EXR + PNG.
 #include "options.h"
+#include <nori/parser.h>
 #include <nori/renderer.h>
 #include <nori/resolver.h>
 #include <nori/scene.h>
+#include <nori/statistical_test.h>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -88,11 +90,21 @@ std::string statsJson(const CommandLine &cl, const Scene &scene, double loadMs, 
     return json;
 }
 
+/// Run the statistical tests of a test file; the report goes to stdout.
+bool runTests(const CommandLine &cl) {
+    std::unique_ptr<NoriObject> root = loadFromXML(cl.scenePath, cl.overrides);
+    const auto *test = dynamic_cast<const StatisticalTest *>(root.get());
+    if (!test) throw NoriException("{}: <test> of an unknown kind", root->location());
+    return test->run(stdout);
+}
+
 int run(const CommandLine &cl) {
     for (const std::string &dir : cl.searchPath) fileResolver().append(dir);
     int threads = cl.threads > 0 ? cl.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     // Bounds every TBB algorithm: the accel build and the renderer alike.
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    // A file whose root is <test> (Nori's ttest / chi2test) runs its tests and writes no image.
+    if (rootElementName(cl.scenePath) == "test") return runTests(cl) ? 0 : 1;
     checkOutputFolder(cl.outputBase);
     // A folder in the way of an image would only fail after the render, possibly after the
     // other image was already replaced: refuse before anything is written.

@@ -122,11 +122,21 @@ public:
     }
 
     std::unique_ptr<NoriObject> parse() {
+        pugi::xml_document doc;
+        pugi::xml_node root = documentElement(doc);
+        PropertyList unusedProps;
+        Transform unusedTransform;
+        std::unique_ptr<NoriObject> object = parseElement(root, Tag::Unknown, unusedProps, unusedTransform);
+        if (!object) throw NoriException("{}: the root element must be an object such as <scene>", where(root));
+        return object;
+    }
+
+    /// The document's single top-level element (XML errors throw), before any object is built.
+    pugi::xml_node documentElement(pugi::xml_document &doc) {
         // A NUL byte never occurs in XML text: say "binary" instead of a confusing parse error.
         size_t nul = m_text.find('\0');
         if (nul != std::string::npos)
             throw NoriException("{}: binary data (a NUL byte), not an XML scene file", where(ptrdiff_t(nul)));
-        pugi::xml_document doc;
         pugi::xml_parse_result result = doc.load_buffer(m_text.data(), m_text.size(), pugi::parse_default);
         // pugixml reports "no document element" at the end of the file; line 1 is more useful.
         if (result.status == pugi::status_no_document_element)
@@ -139,11 +149,7 @@ public:
         for (pugi::xml_node extra = root.next_sibling(); extra; extra = extra.next_sibling())
             if (extra.type() == pugi::node_element)
                 fail(extra, fmt::format("a second top-level element <{}> (a scene file has one root)", extra.name()));
-        PropertyList unusedProps;
-        Transform unusedTransform;
-        std::unique_ptr<NoriObject> object = parseElement(root, Tag::Unknown, unusedProps, unusedTransform);
-        if (!object) throw NoriException("{}: the root element must be an object such as <scene>", where(root));
-        return object;
+        return root;
     }
 
 private:
@@ -465,10 +471,17 @@ std::unique_ptr<NoriObject> loadFromXML(const std::string &path, const SceneOver
     return parser.parse();
 }
 
+std::string rootElementName(const std::string &path) {
+    const SceneOverrides none;
+    SceneParser parser(path, readSceneFile(path), none);
+    pugi::xml_document doc;
+    return parser.documentElement(doc).name();
+}
+
 std::unique_ptr<Scene> loadScene(const std::string &path, const SceneOverrides &overrides) {
     std::unique_ptr<NoriObject> root = loadFromXML(path, overrides);
     if (root->getClassType() != NoriObject::EScene)
-        throw NoriException("{}: the root element is <{}>, expected <scene>", root->location(),
+        throw NoriException("{}: the root element is <{}>, expected <scene> (or <test> for a test file)", root->location(),
                             NoriObject::classTypeName(root->getClassType()));
     return std::unique_ptr<Scene>(static_cast<Scene *>(root.release()));
 }
