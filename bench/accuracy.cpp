@@ -1,3 +1,5 @@
+/// \file accuracy.cpp
+/// \brief Compares a contender's answers with the Embree-robust reference (implementation).
 #include "accuracy.h"
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,5 @@
+/// \file bench_runner.cpp
+/// \brief Runs every contender on one input, interleaved with Embree, and collects the results (implementation).
 #include "bench_runner.h"
 #include "embree_oracle.h"
 #include "ray_sets.h"

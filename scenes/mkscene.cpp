@@ -1,11 +1,12 @@
-// nori-mkscene: writes the default scene's mesh (a decorated trefoil-knot tube
-// resting above a round bevelled pedestal) as an OBJ file with smooth normals.
-//
-//   nori-mkscene OUT.obj
-//
-// The output is deterministic for a given build, and the file is written atomically
-// (nori::AtomicFile), so a failed or interrupted run never leaves a truncated mesh
-// behind for the renderer.
+/// \file mkscene.cpp
+/// \brief nori-mkscene: writes the default scene's mesh (a decorated trefoil-knot tube
+/// resting above a round bevelled pedestal) as an OBJ file with smooth normals.
+///
+///   nori-mkscene OUT.obj
+///
+/// The output is deterministic for a given build, and the file is written atomically
+/// (nori::AtomicFile), so a failed or interrupted run never leaves a truncated mesh
+/// behind for the renderer.
 
 #include <app/cli_app.h>
 #include <nori/atomic_file.h>

@@ -1,3 +1,5 @@
+/// \file accel.cpp
+/// \brief Ray-intersection acceleration structure interface (closest hit and any hit) (implementation).
 #include <nori/accel.h>
 #include <algorithm>
 #include <chrono>

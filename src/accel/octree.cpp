@@ -1,4 +1,5 @@
-// Octree accelerator: properties, dispatch and statistics.
+/// \file octree.cpp
+/// \brief Octree accelerator: properties, dispatch and statistics.
 #include "octree.h"
 
 namespace nori {

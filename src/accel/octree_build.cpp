@@ -1,5 +1,6 @@
-// Octree construction: a parallel recursive split into a temporary tree, then a parallel
-// flattening into the node array and the triangle store.
+/// \file octree_build.cpp
+/// \brief Octree construction: a parallel recursive split into a temporary tree, then a parallel
+/// flattening into the node array and the triangle store.
 #include "octree.h"
 #include "triangle_box.h"
 #include <tbb/parallel_for.h>

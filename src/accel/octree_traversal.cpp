@@ -1,4 +1,5 @@
-// Octree traversals: simd (default, exact), sorted (exact), seed (inexact, for comparison).
+/// \file octree_traversal.cpp
+/// \brief Octree traversals: simd (default, exact), sorted (exact), seed (inexact, for comparison).
 #include "octree.h"
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,6 @@
-// Ray/triangle intersectors and the leaf triangle store.
-// No FMA contraction in this file: see triangle.h for why results must be bit-reproducible.
+/// \file triangle.cpp
+/// \brief Ray/triangle intersectors and the leaf triangle store.
+/// No FMA contraction in this file: see triangle.h for why results must be bit-reproducible.
 #pragma GCC optimize("fp-contract=off")
 // GCC 12's _mm512_max_ps / _mm512_min_ps expand to _mm512_undefined_ps(), which -Wuninitialized
 // reports once inlined here; the value is never read.

@@ -1,3 +1,5 @@
+/// \file object.cpp
+/// \brief Base class of every scene object, and the registry that creates them by type name (implementation).
 #include <nori/object.h>
 #include <algorithm>
 #include <fmt/ranges.h>

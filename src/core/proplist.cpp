@@ -1,3 +1,5 @@
+/// \file proplist.cpp
+/// \brief Typed name/value properties of a scene object, remembering where each was declared (implementation).
 #include <nori/proplist.h>
 #include <algorithm>
 

@@ -1,3 +1,5 @@
+/// \file transform.cpp
+/// \brief Homogeneous 4x4 transformation with its inverse (implementation).
 #include <nori/transform.h>
 #include <Eigen/LU>
 #include <cmath>

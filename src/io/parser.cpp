@@ -1,3 +1,5 @@
+/// \file parser.cpp
+/// \brief Loads Nori's XML scene format (implementation).
 #include "input_file.h"
 #include <nori/parser.h>
 #include <nori/resolver.h>

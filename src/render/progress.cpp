@@ -1,3 +1,5 @@
+/// \file progress.cpp
+/// \brief Progress display on stderr: a bar on a terminal, sparse lines otherwise (implementation).
 #include <nori/progress.h>
 #include <cstdio>
 #include <unistd.h>

@@ -1,3 +1,5 @@
+/// \file renderer.cpp
+/// \brief Block-based image renderer, single-threaded or on oneTBB (implementation).
 #include <nori/block.h>
 #include <nori/progress.h>
 #include <nori/renderer.h>

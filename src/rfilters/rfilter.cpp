@@ -1,4 +1,5 @@
-/// Reconstruction filter plugins: gaussian, box, tent and mitchell.
+/// \file rfilter.cpp
+/// \brief Reconstruction filter plugins: gaussian, box, tent and mitchell.
 #include <nori/rfilter.h>
 #include <cmath>
 

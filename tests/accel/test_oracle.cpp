@@ -1,21 +1,22 @@
-// Oracle tests: every exact octree traversal x intersector agrees with Embree's robust mode on
-// the shared meshes and the meshed Nori scenes, over more than a million rays per mesh.
-//
-// Agreement rule, per ray (closest hit; for shadow rays the same rule on hit/miss):
-//  * match:  same hit/miss; when both hit, the same triangle and both hit points within eps
-//            of it (t may differ by more for a grazing ray: rounding across the plane is
-//            amplified by 1 / sin(angle)).
-//  * tie:    both hit different triangles and each hit point lies within eps of the other's
-//            triangle (duplicated / back-to-back triangles, hits on a shared edge or vertex,
-//            crossing triangles): both answers are the closest hit up to rounding.
-//  * edge:   the answers differ and the ray passes within eps of the boundary of the nearer
-//            of the two hit triangles (for a hit/miss pair: of the triangle that was hit), so
-//            moving the ray by eps would flip that hit (a grazing or edge hit that Embree's
-//            robust test and ours round to different sides).
-//  * range:  the answers differ and the nearer hit's t lies within eps of ray.mint or ray.maxt.
-//  * anything else is unexplained and fails the test.
-// eps = 2^-17 (about 64 float ulps) of the problem's scale: the largest coordinate magnitude
-// of the ray origin, the hit points and t |d|. All geometry of the rule is evaluated in double.
+/// \file test_oracle.cpp
+/// \brief Oracle tests: every exact octree traversal x intersector agrees with Embree's robust mode on
+/// the shared meshes and the meshed Nori scenes, over more than a million rays per mesh.
+///
+/// Agreement rule, per ray (closest hit; for shadow rays the same rule on hit/miss):
+///  * match:  same hit/miss; when both hit, the same triangle and both hit points within eps
+///            of it (t may differ by more for a grazing ray: rounding across the plane is
+///            amplified by 1 / sin(angle)).
+///  * tie:    both hit different triangles and each hit point lies within eps of the other's
+///            triangle (duplicated / back-to-back triangles, hits on a shared edge or vertex,
+///            crossing triangles): both answers are the closest hit up to rounding.
+///  * edge:   the answers differ and the ray passes within eps of the boundary of the nearer
+///            of the two hit triangles (for a hit/miss pair: of the triangle that was hit), so
+///            moving the ray by eps would flip that hit (a grazing or edge hit that Embree's
+///            robust test and ours round to different sides).
+///  * range:  the answers differ and the nearer hit's t lies within eps of ray.mint or ray.maxt.
+///  * anything else is unexplained and fails the test.
+/// eps = 2^-17 (about 64 float ulps) of the problem's scale: the largest coordinate magnitude
+/// of the ray origin, the hit points and t |d|. All geometry of the rule is evaluated in double.
 #include <gtest/gtest.h>
 #include <nori/objloader.h>
 #include "accel/octree.h"

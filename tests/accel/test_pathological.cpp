@@ -1,5 +1,6 @@
-// Pathological inputs for the octree: each must build with a bounded number of triangle
-// references and bytes (never a bound on time) and answer exactly like brute force.
+/// \file test_pathological.cpp
+/// \brief Pathological inputs for the octree: each must build with a bounded number of triangle
+/// references and bytes (never a bound on time) and answer exactly like brute force.
 #include "robust_util.h"
 
 #include <nori/objloader.h>

@@ -1,3 +1,5 @@
+/// \file test_parser.cpp
+/// \brief Tests of the XML scene parser: properties, objects, overrides, locations in messages, and Nori's own scenes.
 #include <gtest/gtest.h>
 #include <nori/parser.h>
 #include <nori/scene.h>

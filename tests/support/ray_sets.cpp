@@ -1,3 +1,5 @@
+/// \file ray_sets.cpp
+/// \brief Deterministic ray sets shared by the oracle tests and the benchmark (implementation).
 #include "ray_sets.h"
 #include <algorithm>
 #include <pcg_random.hpp>
