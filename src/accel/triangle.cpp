@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -179,6 +180,13 @@ Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint
     return {t, u, v, valid};
 }
 
+/// x rounded to float, except that a nonzero x too small for a float keeps its sign (as the
+/// smallest subnormal): only the sign of an edge function decides a hit.
+inline float signedFloat(double x) {
+    const float f = float(x);
+    return f != 0.0f || x == 0.0 ? f : std::copysign(std::numeric_limits<float>::denorm_min(), f);
+}
+
 /// The lanes of \p redo get their edge functions again in double precision. The products of two
 /// floats are exact in double and a difference of doubles is zero only when they are equal, so
 /// the sign is exact (Woop et al. 2013, section 4); the float evaluation can only have rounded a
@@ -193,9 +201,9 @@ void exactEdgeFunctions(VMask<L> redo, const VFloat<L> (&s)[6], VFloat<L> &U, VF
     for (unsigned b = bits(redo); b; b &= b - 1) {
         const int j = __builtin_ctz(b);
         const double ax = c[0][j], ay = c[1][j], bx = c[2][j], by = c[3][j], cx = c[4][j], cy = c[5][j];
-        u[j] = float(cx * by - cy * bx);
-        v[j] = float(ax * cy - ay * cx);
-        w[j] = float(bx * ay - by * ax);
+        u[j] = signedFloat(cx * by - cy * bx);
+        v[j] = signedFloat(ax * cy - ay * cx);
+        w[j] = signedFloat(bx * ay - by * ax);
     }
     U = VFloat<L>::loadu(u);
     V = VFloat<L>::loadu(v);
