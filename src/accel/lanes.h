@@ -110,9 +110,9 @@ inline int compressStore(VMask<1> m, VUint<1> a, uint32_t *dst) { *dst = a.i; re
 template <> struct VMask<8> {
     __mmask8 k;
     static VMask firstN(uint32_t n) { return {__mmask8(n >= 8 ? 0xFFu : (1u << n) - 1)}; }
-    friend VMask operator&(VMask x, VMask y) { return {__mmask8(x.k & y.k)}; }
-    friend VMask operator|(VMask x, VMask y) { return {__mmask8(x.k | y.k)}; }
-    friend VMask operator~(VMask x) { return {__mmask8(~x.k)}; }
+    friend VMask operator&(VMask x, VMask y) { return {_kand_mask8(x.k, y.k)}; }
+    friend VMask operator|(VMask x, VMask y) { return {_kor_mask8(x.k, y.k)}; }
+    friend VMask operator~(VMask x) { return {_knot_mask8(x.k)}; }
     friend bool any(VMask x) { return x.k != 0; }
     friend unsigned bits(VMask x) { return x.k; }
 };
@@ -230,9 +230,10 @@ inline int compressStore(VMask<8> m, VUint<8> a, uint32_t *dst) { return compres
 template <> struct VMask<16> {
     __mmask16 k;
     static VMask firstN(uint32_t n) { return {__mmask16(n >= 16 ? 0xFFFFu : (1u << n) - 1)}; }
-    friend VMask operator&(VMask x, VMask y) { return {__mmask16(x.k & y.k)}; }
-    friend VMask operator|(VMask x, VMask y) { return {__mmask16(x.k | y.k)}; }
-    friend VMask operator~(VMask x) { return {__mmask16(~x.k)}; }
+    // Mask-register instructions, so that masks need not travel through general registers.
+    friend VMask operator&(VMask x, VMask y) { return {_kand_mask16(x.k, y.k)}; }
+    friend VMask operator|(VMask x, VMask y) { return {_kor_mask16(x.k, y.k)}; }
+    friend VMask operator~(VMask x) { return {_knot_mask16(x.k)}; }
     friend bool any(VMask x) { return x.k != 0; }
     friend unsigned bits(VMask x) { return x.k; }
 };

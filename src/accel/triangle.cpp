@@ -135,6 +135,7 @@ inline uint32_t primAt(const float *rows, uint32_t n, uint32_t i) {
 }
 
 /// Row \p row of a leaf (stride n) at triangles i .. i + L - 1; lanes outside \p m are zero.
+/// (The step kernels are forced inline: as calls, their results would travel through memory.)
 template <int L>
 inline VFloat<L> loadRow(const float *rows, uint32_t n, int row, uint32_t i, VMask<L> m) {
     return VFloat<L>::load(rows + size_t(row) * n + i, m);
@@ -153,7 +154,7 @@ struct Step {
 /// the two triangles of a shared edge, so a ray through (or within a few ulps of) the edge can
 /// miss both; tests/accel/test_triangle_decisions.cpp measures how often.
 template <int L>
-Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
+[[gnu::always_inline]] inline Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
     using F = VFloat<L>;
     const F dx = r.d[0], dy = r.d[1], dz = r.d[2];
     F e1x = loadRow(rows, n, 3, i, m), e1y = loadRow(rows, n, 4, i, m), e1z = loadRow(rows, n, 5, i, m);
@@ -170,6 +171,7 @@ Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint
     F u = (tx * px + ty * py + tz * pz) * invDet;
     // Reject u < 0 or u > 1 (ordered compares: a NaN is rejected by the t test below).
     valid = valid & ~((u < 0.0f) | (u > 1.0f));
+    if (!any(valid)) return {u, u, u, valid};  // most steps: every lane fails already
     F qx = ty * e1z - tz * e1y;
     F qy = tz * e1x - tx * e1z;
     F qz = tx * e1y - ty * e1x;
@@ -187,17 +189,28 @@ inline float signedFloat(double x) {
     return f != 0.0f || x == 0.0 ? f : std::copysign(std::numeric_limits<float>::denorm_min(), f);
 }
 
+/// Sheared corners (ax, ay, bx, by, cx, cy) and edge functions of one watertight step.
+template <int L>
+struct Sheared {
+    VFloat<L> c[6];
+};
+template <int L>
+struct Edges {
+    VFloat<L> U, V, W;
+};
+
 /// The lanes of \p redo get their edge functions again in double precision. The products of two
 /// floats are exact in double and a difference of doubles is zero only when they are equal, so
 /// the sign is exact (Woop et al. 2013, section 4); the float evaluation can only have rounded a
-/// nonzero value to zero (rounding is monotonic, it never flips a sign).
+/// nonzero value to zero (rounding is monotonic, it never flips a sign). A rare, out-of-line
+/// path taking its arguments by value, so that the common path keeps them in registers.
 template <int L>
-void exactEdgeFunctions(VMask<L> redo, const VFloat<L> (&s)[6], VFloat<L> &U, VFloat<L> &V, VFloat<L> &W) {
+[[gnu::noinline, gnu::cold]] Edges<L> exactEdgeFunctions(VMask<L> redo, Sheared<L> s, Edges<L> e) {
     float c[6][L], u[L], v[L], w[L];
-    for (int k = 0; k < 6; ++k) s[k].storeu(c[k]);
-    U.storeu(u);
-    V.storeu(v);
-    W.storeu(w);
+    for (int k = 0; k < 6; ++k) s.c[k].storeu(c[k]);
+    e.U.storeu(u);
+    e.V.storeu(v);
+    e.W.storeu(w);
     for (unsigned b = bits(redo); b; b &= b - 1) {
         const int j = __builtin_ctz(b);
         const double ax = c[0][j], ay = c[1][j], bx = c[2][j], by = c[3][j], cx = c[4][j], cy = c[5][j];
@@ -205,30 +218,31 @@ void exactEdgeFunctions(VMask<L> redo, const VFloat<L> (&s)[6], VFloat<L> &U, VF
         v[j] = signedFloat(ax * cy - ay * cx);
         w[j] = signedFloat(bx * ay - by * ax);
     }
-    U = VFloat<L>::loadu(u);
-    V = VFloat<L>::loadu(v);
-    W = VFloat<L>::loadu(w);
+    return {VFloat<L>::loadu(u), VFloat<L>::loadu(v), VFloat<L>::loadu(w)};
 }
 
 /// Woop, Benthin & Wald 2013 (JCGT 2(1)) on rows p0, p1, p2: vertices relative to the origin,
 /// sheared so that the ray is the +z axis, then 2D edge functions; both windings hit.
 template <int L>
-Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
+[[gnu::always_inline]] inline Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
     using F = VFloat<L>;
     const F ox = r.o[r.kx], oy = r.o[r.ky], oz = r.o[r.kz], sx = r.sx, sy = r.sy, sz = r.sz;
     F az = loadRow(rows, n, r.kz, i, m) - oz;
     F bz = loadRow(rows, n, 3 + r.kz, i, m) - oz;
     F cz = loadRow(rows, n, 6 + r.kz, i, m) - oz;
-    // Sheared corners: ax, ay, bx, by, cx, cy.
-    const F s[6] = {(loadRow(rows, n, r.kx, i, m) - ox) - sx * az, (loadRow(rows, n, r.ky, i, m) - oy) - sy * az,
-                    (loadRow(rows, n, 3 + r.kx, i, m) - ox) - sx * bz, (loadRow(rows, n, 3 + r.ky, i, m) - oy) - sy * bz,
-                    (loadRow(rows, n, 6 + r.kx, i, m) - ox) - sx * cz, (loadRow(rows, n, 6 + r.ky, i, m) - oy) - sy * cz};
+    // Sheared corners.
+    const F ax = (loadRow(rows, n, r.kx, i, m) - ox) - sx * az, ay = (loadRow(rows, n, r.ky, i, m) - oy) - sy * az;
+    const F bx = (loadRow(rows, n, 3 + r.kx, i, m) - ox) - sx * bz, by = (loadRow(rows, n, 3 + r.ky, i, m) - oy) - sy * bz;
+    const F cx = (loadRow(rows, n, 6 + r.kx, i, m) - ox) - sx * cz, cy = (loadRow(rows, n, 6 + r.ky, i, m) - oy) - sy * cz;
     // Scaled barycentrics: U weighs p0, V weighs p1, W weighs p2.
-    F U = s[4] * s[3] - s[5] * s[2];
-    F V = s[0] * s[5] - s[1] * s[4];
-    F W = s[2] * s[1] - s[3] * s[0];
+    F U = cx * by - cy * bx;
+    F V = ax * cy - ay * cx;
+    F W = bx * ay - by * ax;
     const VMask<L> redo = m & ((U == 0.0f) | (V == 0.0f) | (W == 0.0f));
-    if (any(redo)) exactEdgeFunctions(redo, s, U, V, W);
+    if (any(redo)) {
+        const Edges<L> e = exactEdgeFunctions(redo, Sheared<L>{{ax, ay, bx, by, cx, cy}}, Edges<L>{U, V, W});
+        U = e.U, V = e.V, W = e.W;
+    }
     // Hit unless the signs are mixed (zero counts as either sign).
     const VMask<L> neg = (U < 0.0f) | (V < 0.0f) | (W < 0.0f), pos = (U > 0.0f) | (V > 0.0f) | (W > 0.0f);
     VMask<L> valid = m & ~(neg & pos);
@@ -243,7 +257,7 @@ Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t
 }
 
 template <int L>
-inline Step<L> testStep(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, float maxt) {
+[[gnu::always_inline]] inline Step<L> testStep(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, float maxt) {
     const VMask<L> m = VMask<L>::firstN(n - i);
     return kind == Intersector::MT ? mollerTrumbore<L>(r, rows, n, i, m, maxt) : watertight<L>(r, rows, n, i, m, maxt);
 }
