@@ -103,7 +103,8 @@ int main(int argc, char **argv) {
         if (!robust.intersect(r, h)) continue;
         Point3f p;
         Normal3f n;
-        table.surface(h.prim, h.u, h.v, p, n);
+        float offset;
+        table.surface(h.prim, h.u, h.v, p, n, offset);
         if (n.isZero()) continue;
         sources.push_back(h);
     }
