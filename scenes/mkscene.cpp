@@ -3,10 +3,12 @@
 //
 //   nori-mkscene OUT.obj
 //
-// Standard library only. The output is deterministic for a given build, and the
-// file is written to OUT.obj.tmp first and renamed, so a failed or interrupted run
-// never leaves a truncated mesh behind for the renderer.
+// The output is deterministic for a given build, and the file is written atomically
+// (nori::AtomicFile), so a failed or interrupted run never leaves a truncated mesh
+// behind for the renderer.
 
+#include <app/cli_app.h>
+#include <nori/atomic_file.h>
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -201,37 +203,13 @@ struct Writer {
     }
 };
 
-bool writeFile(const std::string &path, const std::string &data) {
-    std::string tmpPath = path + ".tmp";
-    FILE *f = std::fopen(tmpPath.c_str(), "wb");
-    if (!f) {
-        std::fprintf(stderr, "nori-mkscene: cannot open '%s' for writing: %s\n", tmpPath.c_str(), std::strerror(errno));
-        return false;
-    }
-    bool ok = std::fwrite(data.data(), 1, data.size(), f) == data.size();
-    int err = errno;
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok) {
-        std::fprintf(stderr, "nori-mkscene: failed writing '%s': %s\n", tmpPath.c_str(), std::strerror(err ? err : errno));
-        std::remove(tmpPath.c_str());
-        return false;
-    }
-    if (std::rename(tmpPath.c_str(), path.c_str()) != 0) {
-        std::fprintf(stderr, "nori-mkscene: cannot rename '%s' to '%s': %s\n", tmpPath.c_str(), path.c_str(),
-                     std::strerror(errno));
-        std::remove(tmpPath.c_str());
-        return false;
-    }
-    return true;
-}
-
 }  // namespace
 
 int main(int argc, char **argv) {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: %s OUT.obj\n", argc > 0 ? argv[0] : "nori-mkscene");
-        return 2;
-    }
+    nori::CliApp cli("nori-mkscene", "Writes the default scene's mesh as an OBJ file with smooth normals.");
+    std::string outPath;
+    cli.app().add_option("output", outPath, "the OBJ file to write")->required()->option_text("OUT.obj");
+    if (std::optional<int> status = cli.parse(argc, argv)) return *status;
 
     Mesh m;
     // 1040 rings x 144 around gives roughly square quads along the ~16-unit-long,
@@ -275,7 +253,12 @@ int main(int argc, char **argv) {
         for (uint32_t v : f) w.index(v, true);
         w.text("\n");
     }
-    if (!writeFile(argv[1], w.buf)) return 1;
-    std::printf("nori-mkscene: wrote %s (%zu vertices, %zu triangles)\n", argv[1], m.pos.size(), m.tri.size());
+    try {
+        nori::AtomicFile::write(outPath, w.buf);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "nori-mkscene: %s\n", nori::oneLine(e.what()).c_str());
+        return 1;
+    }
+    std::printf("nori-mkscene: wrote %s (%zu vertices, %zu triangles)\n", outPath.c_str(), m.pos.size(), m.tri.size());
     return 0;
 }
