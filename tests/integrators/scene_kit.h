@@ -38,12 +38,12 @@ inline std::array<Point3f, 4> squareY(float cx, float y, float cz, float side) {
 inline std::vector<std::array<Point3f, 4>> cubeInward(const Point3f &c, float lo, float hi) {
     auto P = [&](float x, float y, float z) { return Point3f(c.x() + x, c.y() + y, c.z() + z); };
     return {
-        {P(lo, lo, lo), P(hi, lo, lo), P(hi, lo, hi), P(lo, lo, hi)},  // floor, normal +y
-        {P(lo, hi, lo), P(lo, hi, hi), P(hi, hi, hi), P(hi, hi, lo)},  // ceiling, -y
-        {P(lo, lo, lo), P(lo, lo, hi), P(lo, hi, hi), P(lo, hi, lo)},  // x = lo, +x
-        {P(hi, lo, lo), P(hi, hi, lo), P(hi, hi, hi), P(hi, lo, hi)},  // x = hi, -x
-        {P(lo, lo, lo), P(lo, hi, lo), P(hi, hi, lo), P(hi, lo, lo)},  // z = lo, +z
-        {P(lo, lo, hi), P(hi, lo, hi), P(hi, hi, hi), P(lo, hi, hi)},  // z = hi, -z
+        {P(lo, lo, lo), P(lo, lo, hi), P(hi, lo, hi), P(hi, lo, lo)},  // floor, normal +y
+        {P(lo, hi, lo), P(hi, hi, lo), P(hi, hi, hi), P(lo, hi, hi)},  // ceiling, -y
+        {P(lo, lo, lo), P(lo, hi, lo), P(lo, hi, hi), P(lo, lo, hi)},  // x = lo, +x
+        {P(hi, lo, lo), P(hi, lo, hi), P(hi, hi, hi), P(hi, hi, lo)},  // x = hi, -x
+        {P(lo, lo, lo), P(hi, lo, lo), P(hi, hi, lo), P(lo, hi, lo)},  // z = lo, +z
+        {P(lo, lo, hi), P(lo, hi, hi), P(hi, hi, hi), P(hi, lo, hi)},  // z = hi, -z
     };
 }
 
