@@ -6,6 +6,9 @@
 #include "mesh_source.h"
 #include "octree_catalog.h"
 #include "plot_runner.h"
+#include "atomic_file.h"
+#include "render_compare.h"
+#include "render_report.h"
 #include <tbb/global_control.h>
 #include <cstdio>
 #include <memory>
@@ -33,11 +36,35 @@ std::string commandLine(int argc, char **argv) {
     return s;
 }
 
+/// --render: the scene rendered with its octree and with Embree; times and image difference.
+int runRender(const BenchOptions &options, const std::string &command) {
+    RenderCompareSettings settings;
+    settings.scene = options.scene;
+    settings.spp = options.wasGiven("--spp") ? options.spp : 0;
+    settings.threads = options.threads;
+    settings.repeats = options.repeats;
+    settings.embreeRobust = options.embreeRobust;
+    settings.imagesDir = options.renderImages;
+    RenderComparison result = RenderCompare::run(settings);
+    if (!options.jsonPath.empty()) {
+        AtomicFile::write(options.jsonPath, RenderReport::json(result, command));
+        std::fprintf(stderr, "[nori-bench] wrote %s\n", options.jsonPath.c_str());
+    }
+    if (!options.markdownPath.empty()) {
+        AtomicFile::write(options.markdownPath, RenderReport::markdown(result, command));
+        std::fprintf(stderr, "[nori-bench] wrote %s\n", options.markdownPath.c_str());
+    }
+    if (options.jsonPath.empty() && options.markdownPath.empty())
+        std::fputs(RenderReport::markdown(result, command).c_str(), stdout);
+    return 0;
+}
+
 int runBench(const BenchOptions &options, const std::string &command) {
     std::unique_ptr<tbb::global_control> limit;
     if (options.threads > 0)
         limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                       size_t(options.threads));
+    if (options.render) return runRender(options, command);
 
     OctreeCatalog catalog(options);
     if (!OctreeCatalog::available())

@@ -96,6 +96,9 @@ BenchOptions OptionParser::parse(int argc, char **argv) {
         else if (arg == "--quick") o.quick = true;
         else if (arg == "--no-brute") o.noBrute = true;
         else if (arg == "--brute-rays") o.bruteRays = size_t(parseInt(arg, value(), 1, 1 << 30));
+        else if (arg == "--render") o.render = true;
+        else if (arg == "--render-images") o.renderImages = value();
+        else if (arg == "--embree-robust") o.embreeRobust = true;
         else if (arg == "--json") o.jsonPath = value();
         else if (arg == "--markdown") o.markdownPath = value();
         else if (arg == "--plots") o.plotsDir = value();
@@ -105,6 +108,10 @@ BenchOptions OptionParser::parse(int argc, char **argv) {
     }
 
     if (!o.scene.empty() && !o.meshes.empty()) bad("give either --mesh or --scene, not both");
+    if ((o.render || given.count("--render-images") || o.embreeRobust) && o.scene.empty())
+        bad("--render, --render-images and --embree-robust need --scene");
+    if ((given.count("--render-images") || o.embreeRobust) && !o.render)
+        bad("--render-images and --embree-robust apply to --render only");
     if (o.quick) {
         // A tiny configuration for CI; explicit options still win.
         if (!given.count("--width")) o.width = 64;
