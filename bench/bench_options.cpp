@@ -158,6 +158,13 @@ measurement
   --quick              tiny CI configuration (64x64x1 rays, 1 repeat, depths 6,10; a generated
                        mesh when no --mesh is given)
 
+full-render mode (with --scene)
+  --render             render the scene with its accel (the octree) and with Embree, same samples;
+                       report both render times (median of --repeats, interleaved), their ratio
+                       and the image difference (--spp overrides the scene's sample count)
+  --render-images DIR  write octree.exr/png, embree.exr/png and diff.png (|difference| x 10) there
+  --embree-robust      Embree with RTC_SCENE_FLAG_ROBUST in render mode
+
 output
   --json FILE          results as JSON (an array when several meshes are given)
   --markdown FILE      Table 1 layout plus Embree and ratios
