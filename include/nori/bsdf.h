@@ -20,8 +20,11 @@ enum class EMeasure {
 struct BSDFQueryRecord {
     Vector3f wi;
     Vector3f wo;
-    /// \brief Relative index of refraction along the sampled direction (eta_incident / eta_transmitted;
-    /// 1 for reflection). Path tracers use it for Russian roulette.
+    /// \brief Relative index of refraction of the sampled event: the index of the medium \c wo
+    /// points into over that of the medium \c wi points into (1 for reflection). A refracted
+    /// sample's weight includes the radiance scaling 1 / eta^2, so a path tracer that keeps the
+    /// product of the etas along the path and applies Russian roulette to throughput * eta^2
+    /// decides on the path's unscaled throughput.
     float eta = 1.0f;
     EMeasure measure = EMeasure::Unknown;
 

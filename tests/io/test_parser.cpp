@@ -102,9 +102,9 @@ TEST(Parser, UnknownType) {
     expectError(sceneWith("<integrator type=\"path_mis\"/>\n"), 2, "unknown integrator type 'path_mis'");
 }
 TEST(Parser, UnknownBsdfTypeInsideMesh) {
-    expectError("<scene>\n<integrator type=\"normals\"/>\n<mesh type=\"obj\">\n<bsdf type=\"dielectric\"/>\n"
+    expectError("<scene>\n<integrator type=\"normals\"/>\n<mesh type=\"obj\">\n<bsdf type=\"plastic\"/>\n"
                 "<string name=\"filename\" value=\"quad.obj\"/></mesh><camera type=\"perspective\"/></scene>",
-                4, "unknown bsdf type 'dielectric'");
+                4, "unknown bsdf type 'plastic'");
 }
 TEST(Parser, WrongPropertyType) {
     expectError("<scene>\n<integrator type=\"normals\"/>\n<camera type=\"perspective\">\n"
