@@ -1,6 +1,7 @@
 #include "mesh_source.h"
 #include <nori/objloader.h>
 #include <nori/parser.h>
+#include <scene_geometry.h>
 #include <chrono>
 #include <cmath>
 
@@ -44,12 +45,22 @@ BenchInput MeshSource::loadMesh(const std::string &path) {
 BenchInput MeshSource::loadScene(const std::string &path) {
     BenchInput input;
     input.name = path;
-    SceneOverrides overrides;
-    overrides.accelType = "brute";
     auto start = std::chrono::steady_clock::now();
-    input.scene = nori::loadScene(path, overrides);
+    input.scene = loadSceneGeometry(path);
     input.loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (input.triangleCount() == 0) throw NoriException("{}: the scene has no triangles", path);
+    return input;
+}
+
+BenchInput MeshSource::generatedShape(const std::string &shape, const gen::GenParams &params) {
+    BenchInput input;
+    input.name = params.triangles ? fmt::format("shape:{}:{}", shape, params.triangles) : "shape:" + shape;
+    if (params.seed != 1) input.name += fmt::format(" (seed {})", params.seed);
+    auto start = std::chrono::steady_clock::now();
+    gen::GeneratedScene scene = gen::generateScene(shape, params);
+    input.ownedCamera = gen::makeCamera(scene.camera);
+    input.ownedMeshes.push_back(std::make_unique<Mesh>(std::move(scene.mesh), shape));
+    input.loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return input;
 }
 
