@@ -4,6 +4,7 @@
 
 #include <nori/frame.h>
 #include <nori/mesh.h>
+#include <nori/ray.h>
 #include <utility>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct Hit {
 /// \brief Everything an integrator needs to know about a surface hit.
 struct Intersection {
     Point3f p;
+    /// \brief Distance along geoFrame.n by which a ray leaving p must start off the surface
+    /// (rounding of p and the intersectors' own error; see spawnOffset() in ray.h).
+    float offset = 0.0f;
     float t = Infinity;
     Point2f uv;          ///< texture coordinates (barycentrics if the mesh has none)
     Frame shFrame;       ///< shading frame (interpolated normal if the mesh has normals)
@@ -31,6 +35,21 @@ struct Intersection {
         float sign = geoFrame.n.dot(d) > 0.0f ? -1.0f : 1.0f;
         ng = sign * geoFrame.n;
         ns = sign * shFrame.n;
+    }
+
+    /// \brief A ray leaving the surface along \p d (to the side \p d points into), up to \p maxt.
+    Ray3f spawnRay(const Vector3f &d, float maxt = Infinity) const {
+        return nori::spawnRay(p, offset, geoFrame.n, d, maxt);
+    }
+    /// \brief A segment to the point \p q in free space (a point light): maxt = 1 is \p q.
+    Ray3f spawnRayTo(const Point3f &q) const {
+        Point3f o = offsetRayOrigin(p, offset, geoFrame.n, q - p);
+        return Ray3f(o, q - o, 0.0f, 1.0f);
+    }
+    /// \brief A shadow segment to the point \p q of another surface (spawn offset \p qOffset,
+    /// geometric normal \p qng); see nori::spawnSegment.
+    Ray3f spawnSegment(const Point3f &q, float qOffset, const Normal3f &qng) const {
+        return nori::spawnSegment(p, offset, geoFrame.n, q, qOffset, qng);
     }
 };
 

@@ -41,6 +41,7 @@ void Accel::completeIntersection(const Ray3f &ray, const Hit &hit, Intersection 
     float b0 = 1.0f - hit.u - hit.v, b1 = hit.u, b2 = hit.v;
     const auto &P = mesh->positions();
     its.p = b0 * P[face[0]] + b1 * P[face[1]] + b2 * P[face[2]];
+    Vector3f pError = interpolationError(P[face[0]], P[face[1]], P[face[2]], b0, b1, b2);
     if (mesh->hasUVs()) {
         const auto &UV = mesh->uvs();
         its.uv = b0 * UV[face[0]] + b1 * UV[face[1]] + b2 * UV[face[2]];
@@ -50,6 +51,7 @@ void Accel::completeIntersection(const Ray3f &ray, const Hit &hit, Intersection 
     Normal3f ng = mesh->geometricNormal(f);
     if (ng.isZero()) ng = -ray.d.normalized();  // degenerate triangle: face the ray
     its.geoFrame = Frame(ng);
+    its.offset = spawnOffset(P[face[0]], P[face[1]], P[face[2]], its.p, pError, ng);
     if (mesh->hasNormals()) {
         const auto &N = mesh->normals();
         Normal3f ns = b0 * N[face[0]] + b1 * N[face[1]] + b2 * N[face[2]];

@@ -26,8 +26,7 @@ public:
             // Cosine-weighted directions: the estimator of (1/pi) * integral V cos is just V.
             Vector3f d = frame.toWorld(squareToCosineHemisphere(sampler.next2D()));
             if (d.dot(ng) <= 0.0f) continue;  // below the true surface: blocked by it
-            Point3f origin = offsetRayOrigin(its.p, ng, d);
-            if (!scene.rayIntersect(Ray3f(origin, d, 0.0f, m_length))) ++visible;
+            if (!scene.rayIntersect(its.spawnRay(d, m_length))) ++visible;
         }
         return Color3f(float(visible) / float(m_samples));
     }

@@ -21,8 +21,7 @@ public:
         float distance2 = toLight.squaredNorm();
         float cosTheta = ns.dot(toLight) / std::sqrt(distance2);
         if (!(cosTheta > 0.0f)) return Color3f(0.0f);
-        Point3f origin = offsetRayOrigin(its.p, ng, toLight);
-        if (scene.rayIntersect(Ray3f(origin, m_position - origin, 0.0f, 1.0f))) return Color3f(0.0f);
+        if (scene.rayIntersect(its.spawnRayTo(m_position))) return Color3f(0.0f);
         // Point light of power Phi seen by a white Lambertian surface: Phi / (4 pi) * (1 / pi) * cos / d^2.
         return m_energy * (InvFourPi * InvPi * cosTheta / distance2);
     }

@@ -22,10 +22,11 @@ void primaryHits(const std::vector<Ray3f> &primary, const ClosestHitFunction &hi
         if (!hitFunction(ray, hit)) continue;
         Point3f p;
         Normal3f n;
-        table.surface(hit.prim, hit.u, hit.v, p, n);
+        float offset;
+        table.surface(hit.prim, hit.u, hit.v, p, n, offset);
         if (n.isZero()) continue;  // degenerate triangle: no meaningful bounce
         if (n.dot(ray.d) > 0.0f) n = -n;
-        points.push_back(offsetRayOrigin(p, n, -ray.d));
+        points.push_back(offsetRayOrigin(p, offset, n, -ray.d));
         normals.push_back(n);
     }
 }
@@ -35,12 +36,14 @@ MeshTable::MeshTable(const std::vector<const Mesh *> &meshes) : m_meshes(meshes)
     for (const Mesh *m : meshes) m_offsets.push_back(m_offsets.back() + m->triangleCount());
 }
 
-void MeshTable::surface(uint32_t prim, float u, float v, Point3f &p, Normal3f &n) const {
+void MeshTable::surface(uint32_t prim, float u, float v, Point3f &p, Normal3f &n, float &offset) const {
     size_t idx = size_t(std::upper_bound(m_offsets.begin(), m_offsets.end(), prim) - m_offsets.begin()) - 1;
     const Mesh *mesh = m_meshes[idx];
     uint32_t f = prim - m_offsets[idx];
-    p = (1.0f - u - v) * mesh->vertex(f, 0) + u * mesh->vertex(f, 1) + v * mesh->vertex(f, 2);
+    const Point3f &p0 = mesh->vertex(f, 0), &p1 = mesh->vertex(f, 1), &p2 = mesh->vertex(f, 2);
+    p = (1.0f - u - v) * p0 + u * p1 + v * p2;
     n = mesh->geometricNormal(f);
+    offset = spawnOffset(p0, p1, p2, p, interpolationError(p0, p1, p2, 1.0f - u - v, u, v), n);
 }
 
 BoundingBox3f MeshTable::bbox() const {

@@ -16,8 +16,9 @@ using ClosestHitFunction = std::function<bool(const Ray3f &, Hit &)>;
 class MeshTable {
 public:
     explicit MeshTable(const std::vector<const Mesh *> &meshes);
-    /// \brief Point and unit geometric normal of global triangle \p prim at barycentrics (u, v).
-    void surface(uint32_t prim, float u, float v, Point3f &p, Normal3f &n) const;
+    /// \brief Point and unit geometric normal of global triangle \p prim at barycentrics (u, v), and
+    /// the distance a ray leaving the point must start off the surface (nori::spawnOffset).
+    void surface(uint32_t prim, float u, float v, Point3f &p, Normal3f &n, float &offset) const;
     BoundingBox3f bbox() const;
     uint32_t triangleCount() const { return m_offsets.back(); }
     const std::vector<const Mesh *> &meshes() const { return m_meshes; }
