@@ -1,4 +1,5 @@
-/// nori-bench: the seed's Table 1 for any mesh, side by side with Embree 3.
+/// \file bench_main.cpp
+/// \brief nori-bench: the seed's Table 1 for any mesh, side by side with Embree 3.
 #include "bench_options.h"
 #include "bench_runner.h"
 #include "json_writer.h"
@@ -6,11 +7,14 @@
 #include "mesh_source.h"
 #include "octree_catalog.h"
 #include "plot_runner.h"
-#include "atomic_file.h"
 #include "render_compare.h"
 #include "render_report.h"
+#include <app/cli_app.h>
+#include <nori/atomic_file.h>
+#include <fmt/ranges.h>
 #include <tbb/global_control.h>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
@@ -19,21 +23,14 @@ using namespace nori::bench;
 
 namespace {
 
-/// Error messages are printed on one line.
-std::string oneLine(std::string text) {
-    for (char &c : text)
-        if (c == '\n' || c == '\r') c = ' ';
-    return text;
-}
-
+/// The command as the Markdown report quotes it (arguments with blanks or quotes in '').
 std::string commandLine(int argc, char **argv) {
-    std::string s;
-    for (int i = 0; i < argc; ++i) {
-        std::string a = i == 0 ? std::string("nori-bench") : std::string(argv[i]);
-        if (a.find_first_of(" \t'\"") != std::string::npos) a = "'" + a + "'";
-        s += (i ? " " : "") + a;
+    std::vector<std::string> words{"nori-bench"};
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        words.push_back(a.find_first_of(" \t'\"") != std::string::npos ? "'" + a + "'" : a);
     }
-    return s;
+    return fmt::format("{}", fmt::join(words, " "));
 }
 
 /// --render: the scene rendered with its octree and with Embree; times and image difference.
@@ -64,6 +61,15 @@ int runBench(const BenchOptions &options, const std::string &command) {
     if (options.threads > 0)
         limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                       size_t(options.threads));
+    std::string jsonPath = options.jsonPath;
+    if (jsonPath.empty() && !options.plotsDir.empty()) jsonPath = options.plotsDir + "/bench.json";
+    // The folders of the reports are made before the (long) measurement, so that it cannot fail after it.
+    for (const std::string &path : {jsonPath, options.markdownPath}) {
+        std::filesystem::path folder = std::filesystem::path(path).parent_path();
+        std::error_code ec;
+        if (!path.empty() && !folder.empty()) std::filesystem::create_directories(folder, ec);
+        if (ec) throw NoriException("{}: cannot create the folder {}: {}", path, folder.string(), ec.message());
+    }
     if (options.render) return runRender(options, command);
 
     OctreeCatalog catalog(options);
@@ -72,11 +78,7 @@ int runBench(const BenchOptions &options, const std::string &command) {
                              "only (octree options are ignored)\n");
     else
         std::fprintf(stderr, "[nori-bench] %zu octree configuration(s); traversals: %s\n", catalog.configs().size(),
-                     [&] {
-                         std::string t;
-                         for (const std::string &s : catalog.traversals()) t += (t.empty() ? "" : ",") + s;
-                         return t;
-                     }().c_str());
+                     fmt::format("{}", fmt::join(catalog.traversals(), ",")).c_str());
 
     for (const std::string &note : catalog.skipped()) std::fprintf(stderr, "[nori-bench] note: %s\n", note.c_str());
     BenchRunner runner(options, catalog);
@@ -92,8 +94,6 @@ int runBench(const BenchOptions &options, const std::string &command) {
         }
     }
 
-    std::string jsonPath = options.jsonPath;
-    if (jsonPath.empty() && !options.plotsDir.empty()) jsonPath = options.plotsDir + "/bench.json";
     if (!jsonPath.empty()) {
         JsonWriter::write(jsonPath, results);
         std::fprintf(stderr, "[nori-bench] wrote %s\n", jsonPath.c_str());
@@ -114,22 +114,15 @@ int runBench(const BenchOptions &options, const std::string &command) {
 } // namespace
 
 int main(int argc, char **argv) {
+    CliApp cli("nori-bench", "nori-bench: the seed's Table 1 for any mesh, side by side with Embree 3.");
     BenchOptions options;
-    try {
-        options = OptionParser::parse(argc, argv);
-    } catch (const std::invalid_argument &e) {
-        std::fprintf(stderr, "nori-bench: %s\n", oneLine(e.what()).c_str());
-        return 2;
-    }
-    if (options.help) {
-        std::fputs(OptionParser::usage().c_str(), stdout);
-        return 0;
-    }
+    OptionParser::declare(cli, options);
+    if (std::optional<int> status = cli.parse(argc, argv, [&] { OptionParser::finish(cli, options); }))
+        return *status;
     try {
         return runBench(options, commandLine(argc, argv));
-    } catch (const std::invalid_argument &e) {
-        std::fprintf(stderr, "nori-bench: %s\n", oneLine(e.what()).c_str());
-        return 2;
+    } catch (const std::invalid_argument &e) {  // an option value the octree rejects
+        return cli.usageError(e.what());
     } catch (const std::exception &e) {
         std::fprintf(stderr, "nori-bench: error: %s\n", oneLine(e.what()).c_str());
         return 1;

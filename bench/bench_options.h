@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+namespace nori {
+class CliApp;
+}
+
 namespace nori::bench {
 
 /// \brief Every setting of one nori-bench invocation, after parsing and defaulting.
@@ -30,7 +34,7 @@ struct BenchOptions {
     bool embreeRobust = false;        ///< --embree-robust: render mode's Embree in robust mode
     std::string jsonPath, markdownPath, plotsDir;
     std::string python = "/usr/bin/python3";
-    bool help = false;
+    std::vector<std::string> searchPath;  ///< -a (repeatable)
     std::set<std::string> given;      ///< the options that appeared on the command line
 
     bool wasGiven(const std::string &option) const { return given.count(option) != 0; }
@@ -39,13 +43,14 @@ struct BenchOptions {
     size_t cameraRayCount() const { return size_t(width) * size_t(height) * size_t(spp); }
 };
 
-/// \brief Parses argv into BenchOptions; throws std::invalid_argument with a one-line message.
+/// \brief Declares BenchOptions on a CliApp and completes them after parsing.
 class OptionParser {
 public:
-    /// \brief Parse \p argc / \p argv (argv[0] is skipped). Applies --quick and -a.
-    static BenchOptions parse(int argc, char **argv);
-    /// \brief The --help text.
-    static std::string usage();
+    /// \brief Declare every option of nori-bench on \p cli, filling \p options while it parses.
+    static void declare(CliApp &cli, BenchOptions &options);
+    /// \brief After a successful parse: record what was given, apply --quick and -a, and check
+    /// what CLI11 cannot. Throws UsageError.
+    static void finish(CliApp &cli, BenchOptions &options);
 };
 
 } // namespace nori::bench

@@ -1,167 +1,101 @@
+/// \file json_writer.cpp
+/// \brief The bench results as JSON through nlohmann::json (keys in a fixed order).
 #include "json_writer.h"
-#include "atomic_file.h"
+#include <nori/atomic_file.h>
+#include <nlohmann/json.hpp>
 #include <cmath>
 
 namespace nori::bench {
 
 namespace {
 
-/// Minimal streaming JSON emitter: the caller opens and closes, commas are automatic.
-class Emitter {
-public:
-    std::string out;
+using Json = nlohmann::ordered_json;
 
-    void key(const std::string &k) {
-        comma();
-        out += quote(k) + ": ";
-        m_needComma = false;
-    }
-    void value(double v) { raw(std::isfinite(v) ? fmt::format("{}", v) : std::string("null")); }
-    void value(long long v) { raw(fmt::format("{}", v)); }
-    void value(uint64_t v) { raw(fmt::format("{}", v)); }
-    void value(int v) { raw(fmt::format("{}", v)); }
-    void value(bool v) { raw(v ? "true" : "false"); }
-    void value(const std::string &v) { raw(quote(v)); }
-    void value(const char *v) { raw(quote(v)); }
-    template <typename T> void field(const std::string &k, const T &v) { key(k); value(v); }
-    void begin(char bracket) { comma(); out += bracket; m_needComma = false; }
-    void end(char bracket) { out += bracket; m_needComma = true; }
-    void newline(int indent) {
-        if (m_needComma) out += ",";
-        out += "\n" + std::string(size_t(indent), ' ');
-        m_needComma = false;
-    }
+/// A measured figure; a value that is not finite (nothing measured) becomes null.
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
-private:
-    bool m_needComma = false;
-    void comma() { if (m_needComma) out += ", "; }
-    void raw(const std::string &s) { comma(); out += s; m_needComma = true; }
-    static std::string quote(const std::string &s) {
-        std::string q = "\"";
-        for (unsigned char c : s) {
-            if (c == '"' || c == '\\') { q += '\\'; q += char(c); }
-            else if (c == '\n') q += "\\n";
-            else if (c == '\t') q += "\\t";
-            else if (c < 0x20) q += fmt::format("\\u{:04x}", int(c));
-            else q += char(c);
-        }
-        return q + "\"";
-    }
-};
-
-void emitSet(Emitter &j, const SetTiming &s, bool withRatio) {
-    j.key(s.name);
-    j.begin('{');
-    j.field("rays", uint64_t(s.rays));
-    j.field("ms", s.ms);
-    j.field("mrays_s", s.mraysPerS);
+Json setJson(const SetTiming &s, bool withRatio) {
+    Json j;
+    j["rays"] = uint64_t(s.rays);
+    j["ms"] = number(s.ms);
+    j["mrays_s"] = number(s.mraysPerS);
     if (withRatio) {
-        j.field("ratio_vs_embree", s.ratioVsEmbree);
-        j.field("embree_ms", s.embreeMs);
+        j["ratio_vs_embree"] = number(s.ratioVsEmbree);
+        j["embree_ms"] = number(s.embreeMs);
     }
     if (s.hasAccuracy) {
-        j.field("mismatches", s.accuracy.mismatches);
-        j.field("hit_miss_mismatches", s.accuracy.hitMiss);
-        j.field("max_rel_t_error", s.accuracy.maxRelTError);
+        j["mismatches"] = s.accuracy.mismatches;
+        j["hit_miss_mismatches"] = s.accuracy.hitMiss;
+        j["max_rel_t_error"] = number(s.accuracy.maxRelTError);
     }
-    j.key("samples_ms");
-    j.begin('[');
-    for (double v : s.samples) j.value(v);
-    j.end(']');
-    j.end('}');
+    j["samples_ms"] = Json::array();
+    for (double v : s.samples) j["samples_ms"].push_back(number(v));
+    return j;
 }
 
-void emitEmbree(Emitter &j, const EmbreeResult &e, bool robust) {
-    j.begin('{');
-    j.field("build_ms", e.buildMs);
-    j.field("bytes", e.bytes);
-    j.field("robust", robust);
-    for (const SetTiming &s : e.sets) {
-        j.newline(4);
-        emitSet(j, s, robust);
-    }
-    j.end('}');
+/// The three ray sets as members of \p j, keyed by their names.
+void addSets(Json &j, const std::array<SetTiming, 3> &sets, bool withRatio) {
+    for (const SetTiming &s : sets) j[s.name] = setJson(s, withRatio);
 }
 
-void emitRun(Emitter &j, const RunResult &r) {
-    j.begin('{');
-    j.field("accel", r.accel);
-    j.field("default", r.hasConfig && r.config.isDefault);
+Json embreeJson(const EmbreeResult &e, bool robust) {
+    Json j;
+    j["build_ms"] = number(e.buildMs);
+    j["bytes"] = e.bytes;
+    j["robust"] = robust;
+    addSets(j, e.sets, robust);
+    return j;
+}
+
+Json runJson(const RunResult &r) {
+    Json j;
+    j["accel"] = r.accel;
+    j["default"] = r.hasConfig && r.config.isDefault;
     if (r.hasConfig) {
-        j.field("maxDepth", r.config.maxDepth);
-        j.field("leafSize", r.config.leafSize);
-        j.field("overlap", r.config.overlap);
-        j.field("traversal", r.config.traversal);
-        j.field("intersector", r.config.intersector);
+        j["maxDepth"] = r.config.maxDepth;
+        j["leafSize"] = r.config.leafSize;
+        j["overlap"] = r.config.overlap;
+        j["traversal"] = r.config.traversal;
+        j["intersector"] = r.config.intersector;
     }
-    j.field("build_ms", r.buildMs);
+    j["build_ms"] = number(r.buildMs);
     for (const AccelStat &s : r.stats) {
         if (s.name == "build_ms") continue;
-        if (s.integral) j.field(s.name, (long long)std::llround(s.value));
-        else j.field(s.name, s.value);
+        j[s.name] = s.integral ? Json((long long)std::llround(s.value)) : number(s.value);
     }
-    for (const SetTiming &s : r.sets) {
-        j.newline(5);
-        emitSet(j, s, true);
-    }
-    j.end('}');
+    addSets(j, r.sets, true);
+    return j;
 }
 
-void emitMesh(Emitter &j, const MeshResult &m) {
-    j.begin('{');
-    j.field("mesh", m.mesh);
-    j.field("triangles", m.triangles);
-    j.field("threads", m.threads);
-    j.field("load_ms", m.loadMs);
-    j.newline(1);
-    j.key("rays");
-    j.begin('{');
-    j.field("camera", m.camera);
-    j.field("width", m.width);
-    j.field("height", m.height);
-    j.field("spp", m.spp);
-    j.field("repeats", m.repeats);
-    j.field("generation_ms", m.rayGenerationMs);
-    j.field("t_tolerance", Accuracy::Tolerance);
-    j.field("reference", "embree_robust");
-    j.end('}');
-    j.newline(1);
-    j.key("notes");
-    j.begin('[');
-    for (const std::string &n : m.notes) j.value(n);
-    j.end(']');
-    j.newline(1);
-    j.key("embree");
-    emitEmbree(j, m.embree, false);
-    j.newline(1);
-    j.key("embree_robust");
-    emitEmbree(j, m.embreeRobust, true);
-    j.newline(1);
-    j.key("runs");
-    j.begin('[');
-    for (const RunResult &r : m.runs) {
-        j.newline(2);
-        emitRun(j, r);
-    }
-    j.end(']');
-    j.end('}');
+Json meshJson(const MeshResult &m) {
+    Json j;
+    j["mesh"] = m.mesh;
+    j["triangles"] = m.triangles;
+    j["threads"] = m.threads;
+    j["load_ms"] = number(m.loadMs);
+    j["rays"] = {{"camera", m.camera},       {"width", m.width},   {"height", m.height},
+                 {"spp", m.spp},             {"repeats", m.repeats}, {"generation_ms", number(m.rayGenerationMs)},
+                 {"t_tolerance", Accuracy::Tolerance}, {"reference", "embree_robust"}};
+    j["notes"] = m.notes;
+    j["embree"] = embreeJson(m.embree, false);
+    j["embree_robust"] = embreeJson(m.embreeRobust, true);
+    j["runs"] = Json::array();
+    for (const RunResult &r : m.runs) j["runs"].push_back(runJson(r));
+    return j;
 }
 
 } // namespace
 
 std::string JsonWriter::format(const std::vector<MeshResult> &results) {
-    Emitter j;
+    Json j;
     if (results.size() == 1) {
-        emitMesh(j, results.front());
+        j = meshJson(results.front());
     } else {
-        j.begin('[');
-        for (const MeshResult &m : results) {
-            j.newline(0);
-            emitMesh(j, m);
-        }
-        j.end(']');
+        j = Json::array();
+        for (const MeshResult &m : results) j.push_back(meshJson(m));
     }
-    return j.out + "\n";
+    // A mesh's file name need not be UTF-8; replacing stray bytes keeps the document valid.
+    return j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 void JsonWriter::write(const std::string &path, const std::vector<MeshResult> &results) {

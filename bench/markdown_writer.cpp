@@ -1,5 +1,6 @@
 #include "markdown_writer.h"
-#include "atomic_file.h"
+#include <nori/atomic_file.h>
+#include <fmt/ranges.h>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -24,11 +25,7 @@ std::string ratio(double v) {
 
 std::string mib(double bytes) { return bytes < 0.0 ? "–" : fmt::format("{:.1f}", bytes / (1024.0 * 1024.0)); }
 
-std::string row(const std::vector<std::string> &cells) {
-    std::string s = "|";
-    for (const std::string &c : cells) s += " " + c + " |";
-    return s + "\n";
-}
+std::string row(const std::vector<std::string> &cells) { return fmt::format("| {} |\n", fmt::join(cells, " | ")); }
 
 std::string setCell(const SetTiming &s) {
     return fmt::format("{} ({}×) {}", num(s.mraysPerS, 3), ratio(s.ratioVsEmbree),

@@ -12,12 +12,12 @@
 // image) it also fits log RMSE = a + b log spp by least squares and prints the slope b
 // (-0.5 for an unbiased Monte Carlo estimator against an exact reference).
 #include "image_diff.h"
-#include <CLI/CLI.hpp>
+#include <app/cli_app.h>
+#include <nori/atomic_file.h>
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 using namespace nori;
 using nori::bench::ImageDiff;
@@ -70,8 +70,9 @@ double fitSlope(const std::vector<Row> &rows) {
 }
 
 int run(int argc, char **argv) {
-    CLI::App app{"nori-imgdiff: compare OpenEXR renders with a reference (means, standard error, RMSE, "
-                 "convergence slope)"};
+    CliApp cli("nori-imgdiff", "Compares OpenEXR renders with a reference: means, their difference with a "
+                               "standard error, RMSE, and the slope of log RMSE over log spp.");
+    CLI::App &app = cli.app();
     std::string refPath, jsonPath;
     std::vector<std::string> tests;
     std::vector<int> spp;
@@ -83,16 +84,12 @@ int run(int argc, char **argv) {
         ->check(CLI::PositiveNumber);
     app.add_option("--tile", tile, "tile size for the standard error of the mean difference")
         ->check(CLI::Range(1, 4096));
-    app.add_option("--json", jsonPath, "also write the figures as JSON");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError &e) {
-        return app.exit(e);
-    }
-    if (!spp.empty() && spp.size() != tests.size()) {
-        std::fprintf(stderr, "nori-imgdiff: --spp lists %zu counts for %zu test images\n", spp.size(), tests.size());
-        return 2;
-    }
+    app.add_option("--json", jsonPath, "also write the figures as JSON")->option_text("FILE");
+    auto finish = [&] {
+        if (!spp.empty() && spp.size() != tests.size())
+            throw UsageError(fmt::format("--spp lists {} counts for {} test images", spp.size(), tests.size()));
+    };
+    if (std::optional<int> status = cli.parse(argc, argv, finish)) return *status;
 
     Bitmap ref = Bitmap::loadEXR(refPath);
     std::vector<Row> rows;
@@ -131,12 +128,7 @@ int run(int argc, char **argv) {
                                    {"z", r.z()}, {"rmse", r.diff.rmse}, {"rmse_rel", r.diff.rmseRel()},
                                    {"max_abs", r.diff.maxAbs}});
         if (std::isfinite(slope)) j["slope"] = slope;
-        std::ofstream out(jsonPath);
-        out << j.dump(2) << "\n";
-        if (!out) {
-            std::fprintf(stderr, "nori-imgdiff: %s: cannot write\n", jsonPath.c_str());
-            return 1;
-        }
+        AtomicFile::write(jsonPath, j.dump(2) + "\n");
     }
     return 0;
 }
@@ -147,7 +139,7 @@ int main(int argc, char **argv) {
     try {
         return run(argc, argv);
     } catch (const std::exception &e) {
-        std::fprintf(stderr, "nori-imgdiff: %s\n", e.what());
+        std::fprintf(stderr, "nori-imgdiff: %s\n", oneLine(e.what()).c_str());
         return 1;
     }
 }

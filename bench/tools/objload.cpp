@@ -1,4 +1,5 @@
-// nori-objload: time our OBJ loader against tinyobjloader and plain zlib decompression.
+/// \file objload.cpp
+/// \brief nori-objload: time our OBJ loader against tinyobjloader and plain zlib decompression.
 //
 //   nori-objload FILE [REPEATS]
 //
@@ -9,6 +10,7 @@
 #define TINYOBJLOADER_IMPLEMENTATION // header-only build, same compiler flags as ours
 #include <tiny_obj_loader.h>
 
+#include <app/cli_app.h>
 #include <nori/objloader.h>
 #include <benchmark/benchmark.h>
 #include <zlib.h>
@@ -105,12 +107,14 @@ TinyResult tinyParse(std::istream &in) {
 } // namespace
 
 int main(int argc, char **argv) {
-    if (argc < 2 || argc > 3) {
-        std::fprintf(stderr, "usage: %s FILE.obj[.gz] [REPEATS]\n", argv[0]);
-        return 2;
-    }
-    const std::string path = argv[1];
-    const int repeats = argc == 3 ? std::max(1, std::atoi(argv[2])) : 7;
+    CliApp cli("nori-objload", "Times nori's OBJ loader against tinyobjloader and plain zlib decompression.");
+    std::string path;
+    int repeats = 7;
+    cli.app().add_option("file", path, "the mesh (.obj or .obj.gz)")->required()->option_text("FILE");
+    cli.app().add_option("repeats", repeats, "runs per figure; the median is reported (default 7)")
+        ->check(integerIn(1, 1000))
+        ->option_text("REPEATS");
+    if (std::optional<int> status = cli.parse(argc, argv)) return *status;
     try {
         const std::string raw = readAll(path);
         const bool gz = isGzip(raw);
@@ -148,7 +152,7 @@ int main(int argc, char **argv) {
         }
         std::printf("  triangle counts match\n");
     } catch (const std::exception &e) {
-        std::fprintf(stderr, "%s\n", e.what());
+        std::fprintf(stderr, "nori-objload: %s\n", oneLine(e.what()).c_str());
         return 1;
     }
     return 0;

@@ -35,11 +35,16 @@ public:
 
     /// \brief Write linear RGB as 32-bit float channels R, G, B (lossless ZIP compression).
     /// Atomic: the data goes to a temporary file in the same folder that is then renamed over
-    /// \p path. Throws NoriException("PATH: cannot write image: reason"); on failure \p path is untouched.
+    /// \p path. Throws NoriException("PATH: cannot write..."); on failure \p path is untouched.
     void saveEXR(const std::string &path) const;
 
     /// \brief Write 8-bit sRGB (values clamped to [0, 1] after encoding), atomically like saveEXR().
     void savePNG(const std::string &path) const;
+
+    /// \brief The bytes saveEXR() writes; \p path only names the file in error messages.
+    std::string encodeEXR(const std::string &path) const;
+    /// \brief The bytes savePNG() writes; \p path only names the file in error messages.
+    std::string encodePNG(const std::string &path) const;
 
     /// \brief Read the R, G, B channels of an OpenEXR file (missing channels read as zero).
     /// Throws NoriException("PATH: cannot read image: reason").

@@ -3,11 +3,12 @@
 //
 //   nori-mkscene OUTDIR
 //
-// Standard library only; deterministic for a given build. Each file is written to
-// NAME.tmp first and renamed, so a failed run never leaves a truncated mesh behind.
+// Deterministic for a given build. Each file is written atomically (nori::AtomicFile), so
+// a failed run never leaves a truncated mesh behind for the renderer.
 
 #include "knot.h"
 #include "studio.h"
+#include <app/cli_app.h>
 #include <cstdio>
 
 using namespace mkscene;
@@ -29,11 +30,15 @@ struct Output {
 } // namespace
 
 int main(int argc, char **argv) {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: %s OUTDIR\n", argc > 0 ? argv[0] : "nori-mkscene");
-        return 2;
-    }
-    const std::string dir = argv[1];
+    nori::CliApp cli("nori-mkscene", "Writes the default scene's meshes (knot, pedestal, studio sweep, light panels) "
+                                     "as OBJ files into a folder.");
+    std::string dir;
+    cli.app()
+        .add_option("output", dir, "the folder to write them to")
+        ->required()
+        ->check(CLI::ExistingDirectory)
+        ->option_text("OUTDIR");
+    if (std::optional<int> status = cli.parse(argc, argv)) return *status;
 
     Output knot{"knot.obj", "trefoil knot tube with spiral ridges and beads", true, {}};
     // 1040 rings x 144 around gives roughly square quads along the ~16-unit-long,

@@ -1,10 +1,10 @@
 /// \file mesh_builder.cpp
 /// \brief Vertex normals and OBJ output of nori-mkscene's meshes.
 #include "mesh_builder.h"
-#include <cerrno>
+#include <app/cli_app.h>
+#include <nori/atomic_file.h>
 #include <charconv>
 #include <cstdio>
-#include <cstring>
 
 namespace mkscene {
 
@@ -48,30 +48,6 @@ struct Writer {
     }
 };
 
-bool writeFile(const std::string &path, const std::string &data) {
-    std::string tmpPath = path + ".tmp";
-    FILE *f = std::fopen(tmpPath.c_str(), "wb");
-    if (!f) {
-        std::fprintf(stderr, "nori-mkscene: cannot open '%s' for writing: %s\n", tmpPath.c_str(), std::strerror(errno));
-        return false;
-    }
-    bool ok = std::fwrite(data.data(), 1, data.size(), f) == data.size();
-    int err = errno;
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok) {
-        std::fprintf(stderr, "nori-mkscene: failed writing '%s': %s\n", tmpPath.c_str(), std::strerror(err ? err : errno));
-        std::remove(tmpPath.c_str());
-        return false;
-    }
-    if (std::rename(tmpPath.c_str(), path.c_str()) != 0) {
-        std::fprintf(stderr, "nori-mkscene: cannot rename '%s' to '%s': %s\n", tmpPath.c_str(), path.c_str(),
-                     std::strerror(errno));
-        std::remove(tmpPath.c_str());
-        return false;
-    }
-    return true;
-}
-
 } // namespace
 
 bool MeshBuilder::writeObj(const std::string &path, const std::string &comment, bool withNormals) const {
@@ -88,7 +64,12 @@ bool MeshBuilder::writeObj(const std::string &path, const std::string &comment, 
         for (uint32_t v : f) w.index(v, withNormals);
         w.text("\n");
     }
-    if (!writeFile(path, w.buf)) return false;
+    try {
+        nori::AtomicFile::write(path, w.buf);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "nori-mkscene: %s\n", nori::oneLine(e.what()).c_str());
+        return false;
+    }
     std::printf("nori-mkscene: wrote %s (%zu vertices, %zu triangles)\n", path.c_str(), pos.size(), tri.size());
     return true;
 }

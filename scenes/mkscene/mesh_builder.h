@@ -45,9 +45,9 @@ public:
     }
     /// \brief Area-weighted vertex normals (each vertex averages the faces around it).
     std::vector<V3> vertexNormals() const;
-    /// \brief Write \p path (OBJ; faces `f a//a ...` when \p withNormals) through a temporary
-    /// file renamed into place, so a failed run never leaves a truncated mesh. Prints the
-    /// reason and returns false on failure.
+    /// \brief Write \p path (OBJ; faces `f a//a ...` when \p withNormals) atomically
+    /// (nori::AtomicFile), so a failed run never leaves a truncated mesh. Prints the reason
+    /// on one line and returns false on failure.
     bool writeObj(const std::string &path, const std::string &comment, bool withNormals) const;
 };
 

@@ -1,5 +1,8 @@
-/// The `nori` command: load a scene, build its accelerator, render, write EXR + PNG.
+/// \file main.cpp
+/// \brief The `nori` command: load a scene, build its accelerator, render, write EXR + PNG.
 #include "options.h"
+#include "stats_json.h"
+#include <nori/atomic_file.h>
 #include <nori/renderer.h>
 #include <nori/resolver.h>
 #include <nori/scene.h>
@@ -7,7 +10,6 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <tbb/global_control.h>
 #include <unistd.h>
@@ -23,25 +25,6 @@ extern "C" void onInterrupt(int) {
     if (g_cancel.exchange(true)) std::_Exit(130);
 }
 
-/// Write \p text to \p path atomically (temporary file, then rename).
-void writeTextAtomically(const std::string &path, const std::string &text) {
-    std::string tmp = path + ".tmp-" + std::to_string(getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) {
-            std::remove(tmp.c_str());
-            throw NoriException("{}: cannot write: {}", path, std::strerror(errno));
-        }
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        int err = errno;
-        std::remove(tmp.c_str());
-        throw NoriException("{}: cannot write: {}", path, std::strerror(err));
-    }
-}
-
 /// Fail before the (possibly long) render if the output folder cannot take the images.
 void checkOutputFolder(const std::string &base) {
     namespace fs = std::filesystem;
@@ -51,41 +34,6 @@ void checkOutputFolder(const std::string &base) {
     if (!fs::is_directory(folder, ec)) throw NoriException("{}: output folder does not exist", folder.string());
     if (access(folder.c_str(), W_OK) != 0)
         throw NoriException("{}: output folder is not writable: {}", folder.string(), std::strerror(errno));
-}
-
-std::string escapeJson(std::string s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        out += c == '\n' ? ' ' : c;
-    }
-    return out;
-}
-
-std::string statsJson(const CommandLine &cl, const Scene &scene, double loadMs, const RenderResult &result,
-                      int threads) {
-    const Accel &accel = scene.accel();
-    std::string json = "{\n";
-    auto add = [&](const std::string &key, const std::string &value) {
-        json += fmt::format("  \"{}\": {},\n", key, value);
-    };
-    add("scene", fmt::format("\"{}\"", escapeJson(cl.scenePath)));
-    add("accel", fmt::format("\"{}\"", escapeJson(accel.toString())));
-    add("threads", std::to_string(threads));
-    add("width", std::to_string(scene.camera().outputSize().x()));
-    add("height", std::to_string(scene.camera().outputSize().y()));
-    add("spp", std::to_string(scene.sampler().sampleCount()));
-    add("load_ms", fmt::format("{:.3f}", loadMs));
-    add("render_ms", fmt::format("{:.3f}", result.milliseconds));
-    add("rays", std::to_string(result.rays));
-    add("mrays_per_s", fmt::format("{:.4f}", result.rays / (result.milliseconds * 1e3)));
-    add("complete", result.complete ? "true" : "false");
-    // The accelerator's own statistics (build_ms, triangles, node counts, bytes, ...).
-    for (const AccelStat &stat : accel.statistics())
-        add(stat.name, stat.integral ? fmt::format("{}", (long long)stat.value) : fmt::format("{:.4f}", stat.value));
-    json.erase(json.size() - 2);  // last ",\n"
-    json += "\n}\n";
-    return json;
 }
 
 int run(const CommandLine &cl) {
@@ -142,7 +90,7 @@ int run(const CommandLine &cl) {
     result.image.saveEXR(cl.outputBase + ".exr");
     result.image.savePNG(cl.outputBase + ".png");
     if (!cl.statsJsonPath.empty())
-        writeTextAtomically(cl.statsJsonPath, statsJson(cl, *scene, loadMs, result, threads));
+        AtomicFile::write(cl.statsJsonPath, statsJson(RunFigures{cl.scenePath, threads, loadMs}, *scene, result));
     if (!cl.quiet) std::fprintf(stderr, "Wrote %s.exr and %s.png\n", cl.outputBase.c_str(), cl.outputBase.c_str());
     return 0;
 }
@@ -150,12 +98,11 @@ int run(const CommandLine &cl) {
 } // namespace
 
 int main(int argc, char **argv) {
+    CliApp cli("nori", "Renders a Nori XML scene to an OpenEXR image (linear) and a PNG (sRGB) beside it.");
+    CommandLine cl;
+    cl.declare(cli);
+    if (std::optional<int> status = cli.parse(argc, argv, [&] { cl.finish(cli); })) return *status;
     try {
-        CommandLine cl = CommandLine::parse(std::vector<std::string>(argv + 1, argv + argc));
-        if (cl.help) {
-            std::fputs(CommandLine::usage().c_str(), stdout);
-            return 0;
-        }
         return run(cl);
     } catch (const NoriException &e) {
         std::fprintf(stderr, "nori: %s\n", e.what());

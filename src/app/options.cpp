@@ -1,106 +1,126 @@
-#include <nori/object.h>
+/// \file options.cpp
+/// \brief The `nori` command line: declared on CLI11, checked across options, defaulted.
 #include "options.h"
-#include <charconv>
+#include <nori/object.h>
 #include <filesystem>
+#include <fmt/ranges.h>
 
 namespace nori {
 
 namespace {
-int parsePositive(const std::string &option, const std::string &text, int maxValue) {
-    int value = 0;
-    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || ptr != text.data() + text.size() || value <= 0 || value > maxValue)
-        throw NoriException("{}: expected an integer in [1, {}], got '{}'", option, maxValue, text);
-    return value;
+
+const char *const OutputGroup = "Output";
+const char *const RenderGroup = "Rendering";
+const char *const OctreeGroup = "Octree (only with --accel octree, the default)";
+
+std::string names(NoriObject::EClassType type) {
+    return fmt::format("{}", fmt::join(NoriObjectFactory::registeredNames(type), ", "));
 }
 
-std::string joined(const std::vector<std::string> &names) {
-    std::string s;
-    for (const auto &n : names) s += (s.empty() ? "" : ", ") + n;
-    return s;
-}
 } // namespace
 
-std::string CommandLine::usage() {
-    return fmt::format(
-        "Usage: nori [options] SCENE.xml\n"
-        "\n"
-        "Renders a Nori XML scene to an OpenEXR image (linear) and a PNG (sRGB) beside it.\n"
-        "\n"
-        "Options:\n"
-        "  -o, --output FILE     output image (FILE.exr and FILE.png; a .exr/.png suffix is optional).\n"
-        "                        Default: the scene's name next to the scene file.\n"
-        "  -t, --threads N       render (and build) with N threads; 1 runs a plain single-threaded\n"
-        "                        loop. Default: all cores.\n"
-        "  --spp N               samples per pixel (overrides the sampler's sampleCount)\n"
-        "  --accel NAME          accelerator: {} (default: octree, or the scene's <accel>)\n"
-        "  --max-depth N         octree: maximum subdivision depth (default 16, at most 32)\n"
-        "  --leaf-size N         octree: nodes with fewer triangles become leaves (default 512)\n"
-        "  --overlap MODE        octree: triangle/cell overlap test, exact (default) or bbox\n"
-        "  --traversal NAME      octree: simd (default), sorted (both exact) or seed (inexact, for comparison)\n"
-        "  --intersector NAME    ray/triangle test: watertight (default) or mt (Moller-Trumbore)\n"
-        "  -a, --search-path DIR look for scene files in DIR too (repeatable; after the scene's folder)\n"
-        "  --stats               print the accelerator's statistics\n"
-        "  --stats-json FILE     write load/build/render times, rays and accel statistics as JSON\n"
-        "  -q, --quiet           no progress display and no summary\n"
-        "  -h, --help            show this help\n"
-        "\n"
-        "Ctrl-C stops after the blocks in flight and saves NAME-partial.exr.\n"
-        "Scene types: integrators {}; samplers {}; filters {}; cameras {}; meshes {}; bsdfs {}.\n",
-        joined(NoriObjectFactory::registeredNames(NoriObject::EAccel)),
-        joined(NoriObjectFactory::registeredNames(NoriObject::EIntegrator)),
-        joined(NoriObjectFactory::registeredNames(NoriObject::ESampler)),
-        joined(NoriObjectFactory::registeredNames(NoriObject::EReconstructionFilter)),
-        joined(NoriObjectFactory::registeredNames(NoriObject::ECamera)),
-        joined(NoriObjectFactory::registeredNames(NoriObject::EMesh)),
-        joined(NoriObjectFactory::registeredNames(NoriObject::EBSDF)));
+void CommandLine::declare(CliApp &cli) {
+    CLI::App &app = cli.app();
+    // Like most tools: an option given twice takes its last value.
+    app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    app.add_option("SCENE", scenePath, "the scene (Nori XML); put -- before a name that starts with '-'")
+        ->required()
+        ->option_text("SCENE.xml");
+
+    app.add_option("-o,--output", outputBase,
+                   "output name: writes FILE.exr (linear) and FILE.png (sRGB); a .exr/.png suffix is optional. "
+                   "Default: the scene's name next to the scene")
+        ->option_text("FILE")
+        ->group(OutputGroup);
+    app.add_flag("--stats", printStats, "print the accelerator's statistics")->group(OutputGroup);
+    app.add_option("--stats-json", statsJsonPath,
+                   "write load/build/render times, rays and the accelerator's statistics as JSON")
+        ->option_text("FILE")
+        ->group(OutputGroup);
+    app.add_flag("-q,--quiet", quiet, "no progress display and no summary")->group(OutputGroup);
+
+    app.add_option("-t,--threads", threads,
+                   "threads for the build and the render; 1 runs a plain single-threaded loop. Default: all cores")
+        ->check(integerIn(1, 1024))
+        ->option_text("N")
+        ->group(RenderGroup);
+    app.add_option("--spp", m_spp, "samples per pixel (overrides the sampler's sampleCount)")
+        ->check(integerIn(1, 1 << 20))
+        ->option_text("N")
+        ->group(RenderGroup);
+    app.add_option("--accel", overrides.accelType,
+                   fmt::format("accelerator: {} (default: the scene's <accel>, else octree)", names(NoriObject::EAccel)))
+        ->check(oneOf(NoriObjectFactory::registeredNames(NoriObject::EAccel)))
+        ->option_text("NAME")
+        ->group(RenderGroup);
+    app.add_option("-a,--search-path", searchPath,
+                   "look for files named in the scene in DIR too (repeatable; after the scene's folder)")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->allow_extra_args(false)
+        ->option_text("DIR")
+        ->group(RenderGroup);
+
+    // The octree settings become properties of the scene's <accel>, as if written there.
+    auto integerProperty = [this](const char *property) {
+        return [this, property](int value) {
+            overrides.accelProps.setInteger(property, value, fmt::format("command line ({})", property));
+        };
+    };
+    auto stringProperty = [this](const char *property) {
+        return [this, property](const std::string &value) {
+            overrides.accelProps.setString(property, value, fmt::format("command line ({})", property));
+        };
+    };
+    app.add_option_function<int>("--max-depth", integerProperty("maxDepth"), "deepest subdivision level (default 16)")
+        ->check(integerIn(0, 32))
+        ->option_text("0..32")
+        ->group(OctreeGroup);
+    app.add_option_function<int>("--leaf-size", integerProperty("leafSize"),
+                                 "a node with fewer triangles becomes a leaf (default 512)")
+        ->check(integerIn(1, 1 << 30))
+        ->option_text("N")
+        ->group(OctreeGroup);
+    app.add_option_function<std::string>("--overlap", stringProperty("overlap"),
+                                         "triangle/cell overlap test: exact (default) or bbox")
+        ->option_text("MODE")
+        ->group(OctreeGroup);
+    app.add_option_function<std::string>("--traversal", stringProperty("traversal"),
+                                         "simd (default), sorted (both exact) or seed (inexact, for comparison)")
+        ->option_text("NAME")
+        ->group(OctreeGroup);
+    app.add_option_function<std::string>("--intersector", stringProperty("intersector"),
+                                         "ray/triangle test: watertight (default) or mt (Moller-Trumbore)")
+        ->option_text("NAME")
+        ->group(OctreeGroup);
+
+    app.footer(fmt::format("Ctrl-C stops after the blocks in flight and saves NAME-partial.exr.\n"
+                           "Scene types: integrators {}; samplers {}; filters {}; cameras {}; meshes {}; bsdfs {}.",
+                           names(NoriObject::EIntegrator), names(NoriObject::ESampler),
+                           names(NoriObject::EReconstructionFilter), names(NoriObject::ECamera),
+                           names(NoriObject::EMesh), names(NoriObject::EBSDF)));
 }
 
-CommandLine CommandLine::parse(const std::vector<std::string> &args) {
-    CommandLine cl;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string &arg = args[i];
-        auto value = [&]() -> const std::string & {
-            if (i + 1 >= args.size()) throw NoriException("{}: missing value (see --help)", arg);
-            return args[++i];
-        };
-        auto where = [&] { return "command line (" + arg + ")"; };
-        if (arg == "-h" || arg == "--help") cl.help = true;
-        else if (arg == "-q" || arg == "--quiet") cl.quiet = true;
-        else if (arg == "--stats") cl.printStats = true;
-        else if (arg == "--stats-json") cl.statsJsonPath = value();
-        else if (arg == "-o" || arg == "--output") cl.outputBase = value();
-        else if (arg == "-t" || arg == "--threads") cl.threads = parsePositive(arg, value(), 1024);
-        else if (arg == "--spp") cl.overrides.sampleCount = parsePositive(arg, value(), 1 << 20);
-        else if (arg == "--accel") cl.overrides.accelType = value();
-        else if (arg == "-a" || arg == "--search-path") cl.searchPath.push_back(value());
-        else if (arg == "--max-depth") cl.overrides.accelProps.setInteger("maxDepth", parsePositive(arg, value(), 1 << 20), where());
-        else if (arg == "--leaf-size") cl.overrides.accelProps.setInteger("leafSize", parsePositive(arg, value(), 1 << 30), where());
-        else if (arg == "--overlap") cl.overrides.accelProps.setString("overlap", value(), where());
-        else if (arg == "--traversal") cl.overrides.accelProps.setString("traversal", value(), where());
-        else if (arg == "--intersector") cl.overrides.accelProps.setString("intersector", value(), where());
-        else if (!arg.empty() && arg[0] == '-' && arg != "-") throw NoriException("unknown option '{}' (see --help)", arg);
-        else if (cl.scenePath.empty()) cl.scenePath = arg;
-        else throw NoriException("more than one scene given ('{}' and '{}')", cl.scenePath, arg);
-    }
-    if (cl.help) return cl;
-    if (cl.scenePath.empty()) throw NoriException("no scene file given (see --help)");
-    if (cl.overrides.accelType.size() &&
-        !NoriObjectFactory::isRegistered(NoriObject::EAccel, cl.overrides.accelType))
-        throw NoriException("--accel: unknown accelerator '{}' (known: {})", cl.overrides.accelType,
-                            joined(NoriObjectFactory::registeredNames(NoriObject::EAccel)));
+void CommandLine::finish(const CliApp &cli) {
+    const CLI::App &app = const_cast<CliApp &>(cli).app();
+    // An octree setting given with another accelerator would be silently meaningless.
+    if (!overrides.accelType.empty() && overrides.accelType != "octree")
+        for (const char *option : {"--max-depth", "--leaf-size", "--overlap", "--traversal", "--intersector"})
+            if (app.count(option) != 0)
+                throw UsageError(fmt::format("{} applies only to --accel octree, not to --accel {}", option,
+                                             overrides.accelType));
+    overrides.sampleCount = m_spp;
+
     // Output name: strip a known image suffix; both images are always written.
     namespace fs = std::filesystem;
-    if (cl.outputBase.empty()) {
-        fs::path scene(cl.scenePath);
-        cl.outputBase = (scene.parent_path() / scene.stem()).string();
+    if (outputBase.empty()) {
+        fs::path scene(scenePath);
+        outputBase = (scene.parent_path() / scene.stem()).string();
     } else {
-        fs::path out(cl.outputBase);
+        fs::path out(outputBase);
         std::string ext = out.extension().string();
-        if (ext == ".exr" || ext == ".png") cl.outputBase = (out.parent_path() / out.stem()).string();
-        else if (!ext.empty()) throw NoriException("--output: '{}' must end in .exr or .png", cl.outputBase);
+        if (ext == ".exr" || ext == ".png") outputBase = (out.parent_path() / out.stem()).string();
+        else if (!ext.empty()) throw UsageError(fmt::format("--output: '{}' must end in .exr or .png", outputBase));
     }
-    return cl;
 }
 
 } // namespace nori

@@ -1,5 +1,6 @@
 #include <nori/object.h>
 #include <algorithm>
+#include <fmt/ranges.h>
 #include <map>
 
 namespace nori {
@@ -43,10 +44,8 @@ std::unique_ptr<NoriObject> NoriObjectFactory::createInstance(NoriObject::EClass
     auto it = registry().find({int(type), name});
     if (it == registry().end()) {
         std::vector<std::string> known = registeredNames(type);
-        std::string list;
-        for (const auto &k : known) list += (list.empty() ? "" : ", ") + k;
-        throw NoriException("{}: unknown {} type '{}' (known: {})", props.location(),
-                            NoriObject::classTypeName(type), name, list.empty() ? "none" : list);
+        throw NoriException("{}: unknown {} type '{}' (known: {})", props.location(), NoriObject::classTypeName(type),
+                            name, known.empty() ? std::string("none") : fmt::format("{}", fmt::join(known, ", ")));
     }
     std::unique_ptr<NoriObject> object = it->second(props);
     object->setLocation(props.location());

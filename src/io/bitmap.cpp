@@ -1,5 +1,7 @@
-/// Bitmap storage and its OpenEXR / PNG output.
+/// \file bitmap.cpp
+/// \brief Bitmap storage and its OpenEXR / PNG output.
 #include <nori/bitmap.h>
+#include <nori/atomic_file.h>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -9,12 +11,6 @@
 #include <ImfStdIO.h>
 #include <stb_image_write.h>
 
-#include <atomic>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
-#include <fcntl.h>
-#include <unistd.h>
 
 namespace nori {
 
@@ -23,50 +19,19 @@ static_assert(sizeof(Color3f) == 3 * sizeof(float), "Color3f must be three packe
 
 namespace {
 
-[[noreturn]] void writeError(const std::string &path, const std::string &reason) {
-    throw NoriException("{}: cannot write image: {}", path, reason);
-}
-
-/// Distinguishes temporary files of concurrent writes to the same path within one process.
-std::atomic<unsigned> g_temporaryCounter{0};
-
-/// Write \p bytes to \p path so that readers see either the old file or the complete new one:
-/// the data goes to a temporary file in the same folder (so that rename() stays within one file
-/// system and is atomic), is flushed to disk, and only then renamed over the target.
-/// On failure the temporary file is removed and \p path is left as it was.
-void writeFileAtomically(const std::string &path, const std::string &bytes) {
-    std::string temporary =
-        fmt::format("{}.tmp-{}-{}", path, long(::getpid()), g_temporaryCounter.fetch_add(1));
-    // O_EXCL: never clobber (or follow a symlink planted at) an existing file of that name.
-    int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0) writeError(path, fmt::format("cannot create '{}': {}", temporary, std::strerror(errno)));
-
-    auto fail = [&](const char *what, bool closeFd) {
-        int error = errno;
-        if (closeFd) ::close(fd);
-        ::unlink(temporary.c_str());
-        writeError(path, fmt::format("{} '{}': {}", what, temporary, std::strerror(error)));
-    };
-
-    const char *data = bytes.data();
-    size_t remaining = bytes.size();
-    while (remaining > 0) {
-        ssize_t written = ::write(fd, data, remaining);
-        if (written < 0) {
-            if (errno == EINTR) continue;
-            fail("cannot write", true);
-        }
-        data += written;
-        remaining -= size_t(written);
+/// Encode with \p encoder; every failure names \p path.
+template <typename Encoder> std::string encodeFor(const std::string &path, const Bitmap &bitmap, Encoder encoder) {
+    if (bitmap.width() == 0 || bitmap.height() == 0)
+        throw NoriException("{}: cannot write image: the image is empty", path);
+    try {
+        return encoder(bitmap);
+    } catch (const std::exception &e) {
+        throw NoriException("{}: cannot write image: {}", path, e.what());
     }
-    // Without fsync a crash right after rename() could leave an empty file under the final name.
-    if (::fsync(fd) != 0) fail("cannot flush", true);
-    if (::close(fd) != 0) fail("cannot close", false);
-    if (::rename(temporary.c_str(), path.c_str()) != 0) fail("cannot rename", false);
 }
 
 /// Encode \p bitmap as a float RGB OpenEXR file in memory.
-std::string encodeEXR(const Bitmap &bitmap) {
+std::string exrBytes(const Bitmap &bitmap) {
     const int width = bitmap.width(), height = bitmap.height();
     Imf::Header header(width, height);
     header.channels().insert("R", Imf::Channel(Imf::FLOAT));
@@ -100,7 +65,7 @@ unsigned char toSRGB8(float value) {
 }
 
 /// Encode \p bitmap as an 8-bit RGB PNG in memory.
-std::string encodePNG(const Bitmap &bitmap) {
+std::string pngBytes(const Bitmap &bitmap) {
     const int width = bitmap.width(), height = bitmap.height();
     std::vector<unsigned char> rgb(size_t(width) * size_t(height) * 3);
     for (int y = 0; y < height; ++y)
@@ -129,27 +94,13 @@ Bitmap::Bitmap(int width, int height) : m_width(width), m_height(height) {
     m_pixels.assign(size_t(width) * size_t(height), Color3f::Zero());
 }
 
-void Bitmap::saveEXR(const std::string &path) const {
-    if (m_width == 0 || m_height == 0) writeError(path, "the image is empty");
-    std::string bytes;
-    try {
-        bytes = encodeEXR(*this);
-    } catch (const std::exception &e) {
-        writeError(path, e.what());
-    }
-    writeFileAtomically(path, bytes);
-}
+std::string Bitmap::encodeEXR(const std::string &path) const { return encodeFor(path, *this, exrBytes); }
 
-void Bitmap::savePNG(const std::string &path) const {
-    if (m_width == 0 || m_height == 0) writeError(path, "the image is empty");
-    std::string bytes;
-    try {
-        bytes = encodePNG(*this);
-    } catch (const std::exception &e) {
-        writeError(path, e.what());
-    }
-    writeFileAtomically(path, bytes);
-}
+std::string Bitmap::encodePNG(const std::string &path) const { return encodeFor(path, *this, pngBytes); }
+
+void Bitmap::saveEXR(const std::string &path) const { AtomicFile::write(path, encodeEXR(path)); }
+
+void Bitmap::savePNG(const std::string &path) const { AtomicFile::write(path, encodePNG(path)); }
 
 Bitmap Bitmap::loadEXR(const std::string &path) {
     try {

@@ -1,4 +1,5 @@
-// End-to-end tests of the `nori` command: outputs, statistics, help, and Ctrl-C.
+/// \file test_cli.cpp
+/// \brief End-to-end tests of the `nori` command: outputs, statistics, help, and Ctrl-C.
 #include <gtest/gtest.h>
 #include <csignal>
 #include <filesystem>
@@ -97,7 +98,7 @@ TEST(Cli, RendersBothImagesAndStatsJson) {
 TEST(Cli, BadOptionGivesOneLineAndNoOutput) {
     TempDir dir;
     NoriProcess p({"--threads", "0", kBunnyScene, "-o", dir.file("out")});
-    EXPECT_EQ(p.wait(), 1);
+    EXPECT_EQ(p.wait(), 2);  // a usage error
     EXPECT_EQ(std::count(p.stderrText().begin(), p.stderrText().end(), '\n'), 1) << p.stderrText();
     EXPECT_FALSE(std::filesystem::exists(dir.file("out.exr")));
 }

@@ -1,23 +1,19 @@
-// Bad input through the real `nori` binary: every case of tests/data/bad/MANIFEST.tsv must
+/// \file test_cli_bad_input.cpp
+/// \brief Bad input through the real `nori` binary: every case of tests/data/bad/MANIFEST.tsv must
 // fail cleanly (exit code != 0, no signal), print exactly one line naming the right file and
 // line, create no output file, and leave an earlier image of the same name byte for byte.
+#include "run_tool.h"
 #include <gtest/gtest.h>
 
-#include <cerrno>
-#include <cstring>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <spawn.h>
 #include <sstream>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-extern char **environ;
 
 namespace fs = std::filesystem;
+using nori::runTool;
+using nori::ToolRun;
+using nori::ToolSetup;
 
 namespace {
 
@@ -67,50 +63,11 @@ std::set<std::string> listDirectory(const fs::path &dir) {
     return names;
 }
 
-struct RunResult {
-    bool exited = false;   ///< false: killed by a signal
-    int code = -1;         ///< exit code, or the signal number
-    std::string out, err;
-};
-
-/// Run nori with \p args; stdout and stderr go to files in \p work.
-RunResult runNori(const std::vector<std::string> &args, const fs::path &work) {
-    const fs::path outPath = work / "stdout.txt", errPath = work / "stderr.txt";
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<std::string> argvStrings = {NoriBinary.string()};
-    argvStrings.insert(argvStrings.end(), args.begin(), args.end());
-    std::vector<char *> argv;
-    for (auto &a : argvStrings) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    // Bounded address space for the child (inherited through spawn): a few bytes of bad input
-    // must not make nori reserve gigabytes. Sanitizers reserve huge shadow mappings: no limit there.
-    struct rlimit saved {};
-    getrlimit(RLIMIT_AS, &saved);
-#if !defined(__SANITIZE_ADDRESS__)
-    struct rlimit limited = saved;
-    limited.rlim_cur = std::min<rlim_t>(saved.rlim_cur, rlim_t(1) << 30);
-    setrlimit(RLIMIT_AS, &limited);
-#endif
-    pid_t pid = 0;
-    int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-    setrlimit(RLIMIT_AS, &saved);
-    posix_spawn_file_actions_destroy(&actions);
-    RunResult result;
-    if (rc != 0) throw std::runtime_error(std::string("posix_spawn failed: ") + std::strerror(rc));
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR) throw std::runtime_error("waitpid failed");
-    result.exited = WIFEXITED(status);
-    result.code = result.exited ? WEXITSTATUS(status) : WTERMSIG(status);
-    result.out = readFile(outPath);
-    result.err = readFile(errPath);
-    fs::remove(outPath);
-    fs::remove(errPath);
-    return result;
+/// Run nori with \p args in a bounded address space.
+ToolRun runNori(const std::vector<std::string> &args) {
+    ToolSetup setup;
+    setup.limitAddressSpace = true;
+    return runTool(NoriBinary.string(), args, setup);
 }
 
 /// Does \p message name "FILE:LINE" (FILE as a whole path component, LINE not followed by a digit)?
@@ -165,7 +122,7 @@ TEST_P(BadInput, FailsCleanlyWithOneLocatedMessage) {
 
     for (const char *output : {"image.exr", "fresh.exr"}) {
         SCOPED_TRACE(output);
-        RunResult r = runNori({"-q", "-t", "1", "-o", (work / output).string(), scene.string()}, work);
+        ToolRun r = runNori({"-q", "-t", "1", "-o", (work / output).string(), scene.string()});
         EXPECT_TRUE(r.exited) << "killed by signal " << r.code << "; stderr:\n" << r.err;
         EXPECT_NE(r.code, 0) << "stderr:\n" << r.err;
         EXPECT_EQ(r.out, "");
@@ -214,9 +171,8 @@ TEST(BadInputCorpus, GoodSceneRendersAndReplacesTheImage) {
     const fs::path work = corpus().root / "out-good";
     fs::create_directories(work);
     writeFile(work / "image.exr", "old");
-    RunResult r = runNori({"-q", "-t", "1", "-o", (work / "image.exr").string(),
-                           (corpus().root / "bad" / "good.xml").string()},
-                          work);
+    ToolRun r = runNori({"-q", "-t", "1", "-o", (work / "image.exr").string(),
+                           (corpus().root / "bad" / "good.xml").string()});
     EXPECT_TRUE(r.exited);
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.err, "");
@@ -238,7 +194,7 @@ TEST(BadInputCorpus, BadCommandLinesFailWithOneLine) {
         {"-o", (work / "no" / "such" / "x.exr").string(), scene}, {"-o", out, scene, "--spp"},
     };
     for (const auto &args : cases) {
-        RunResult r = runNori(args, work);
+        ToolRun r = runNori(args);
         EXPECT_TRUE(r.exited);
         EXPECT_NE(r.code, 0) << args[0];
         EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
@@ -253,7 +209,7 @@ TEST(BadInputCorpus, BadCommandLinesFailWithOneLine) {
         fs::path other = work / (std::string("folder") + (dir.extension() == ".exr" ? ".png" : ".exr"));
         writeFile(other, "earlier image");
         const std::set<std::string> before = listDirectory(work);
-        RunResult r = runNori({"-q", "-t", "1", "-o", (work / "folder").string(), scene}, work);
+        ToolRun r = runNori({"-q", "-t", "1", "-o", (work / "folder").string(), scene});
         EXPECT_TRUE(r.exited);
         EXPECT_NE(r.code, 0);
         EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;

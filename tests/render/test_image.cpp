@@ -583,7 +583,7 @@ TEST_F(ImageFiles, WriteIntoMissingDirectoryThrowsAndLeavesNoFile) {
                 bitmap.savePNG(path);
             ADD_FAILURE() << "writing " << path << " did not throw";
         } catch (const NoriException &e) {
-            EXPECT_EQ(std::string(e.what()).rfind(path + ": cannot write image: ", 0), 0u) << e.what();
+            EXPECT_EQ(std::string(e.what()).rfind(path + ": cannot write", 0), 0u) << e.what();
         }
         EXPECT_FALSE(fs::exists(missing));
     }
@@ -608,7 +608,7 @@ TEST_F(ImageFiles, FailedWriteLeavesExistingTargetUntouched) {
                     bitmap.savePNG(target.string());
             } catch (const NoriException &e) {
                 threw = true;
-                EXPECT_EQ(std::string(e.what()).rfind(target.string() + ": cannot write image: ", 0), 0u)
+                EXPECT_EQ(std::string(e.what()).rfind(target.string() + ": cannot write", 0), 0u)
                     << e.what();
             }
         }

@@ -1,0 +1,33 @@
+/// \file stats_json.cpp
+/// \brief statsJson(): the run's figures and the accelerator's statistics through nlohmann::json.
+#include "stats_json.h"
+#include <nori/renderer.h>
+#include <nori/scene.h>
+#include <nlohmann/json.hpp>
+
+namespace nori {
+
+std::string statsJson(const RunFigures &run, const Scene &scene, const RenderResult &result) {
+    const Accel &accel = scene.accel();
+    nlohmann::ordered_json json;
+    json["scene"] = run.scenePath;
+    json["accel"] = accel.toString();
+    json["threads"] = run.threads;
+    json["width"] = scene.camera().outputSize().x();
+    json["height"] = scene.camera().outputSize().y();
+    json["spp"] = scene.sampler().sampleCount();
+    json["load_ms"] = run.loadMs;
+    json["render_ms"] = result.milliseconds;
+    json["rays"] = result.rays;
+    json["mrays_per_s"] = result.milliseconds > 0.0 ? result.rays / (result.milliseconds * 1e3) : 0.0;
+    json["complete"] = result.complete;
+    // The accelerator's own statistics (build_ms, triangles, node counts, bytes, ...).
+    for (const AccelStat &stat : accel.statistics()) {
+        if (stat.integral) json[stat.name] = (long long)stat.value;
+        else json[stat.name] = stat.value;
+    }
+    // A file name need not be UTF-8; replacing stray bytes keeps the document valid JSON.
+    return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+} // namespace nori
