@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nori/bbox.h>
+#include <nori/dpdf.h>
 #include <nori/object.h>
 #include <array>
 #include <vector>
@@ -10,6 +11,16 @@
 namespace nori {
 
 class BSDF;
+class Emitter;
+
+/// \brief A point drawn uniformly by area on a mesh.
+struct MeshSample {
+    Point3f p;
+    Normal3f n;           ///< shading normal (interpolated vertex normals, else the geometric one)
+    Normal3f ng;          ///< unit geometric normal
+    float offset = 0.0f;  ///< spawn offset of p (see spawnOffset() in ray.h)
+    float pdf = 0.0f;     ///< density per unit area: 1 / surfaceArea()
+};
 
 /// \brief Vertex and face buffers of a triangle mesh (what an OBJ file yields).
 struct MeshData {
@@ -19,7 +30,7 @@ struct MeshData {
     std::vector<std::array<uint32_t, 3>> faces;
 };
 
-/// \brief A triangle mesh in world space with its BSDF.
+/// \brief A triangle mesh in world space with its BSDF and, for an area light, its emitter.
 class Mesh : public NoriObject {
 public:
     Mesh();
@@ -45,6 +56,17 @@ public:
     const BoundingBox3f &bbox() const { return m_bbox; }
 
     const BSDF *bsdf() const { return m_bsdf.get(); }
+    /// \brief The area light on this mesh, or null.
+    const Emitter *emitter() const { return m_emitter.get(); }
+    bool isEmitter() const { return m_emitter != nullptr; }
+
+    /// \brief Total area (computed by activate() for a mesh that emits; 0 before).
+    float surfaceArea() const { return m_area; }
+    /// \brief A point uniform by area: a triangle chosen in proportion to its area, then uniform
+    /// barycentrics; the first sample dimension serves both. Needs activate() on an emitting mesh.
+    void samplePosition(const Point2f &sample, MeshSample &out) const;
+    /// \brief Point, normals and spawn offset at barycentrics (b1, b2) of triangle \p index.
+    void surfacePoint(uint32_t index, float b1, float b2, MeshSample &out) const;
     const std::string &name() const { return m_name; }
 
     void addChild(std::unique_ptr<NoriObject> child) override;
@@ -60,6 +82,9 @@ protected:
     std::string m_name;
     BoundingBox3f m_bbox;
     std::unique_ptr<BSDF> m_bsdf;
+    std::unique_ptr<Emitter> m_emitter;
+    DiscretePDF m_areaPDF;  ///< over triangles, by area (emitting meshes only)
+    float m_area = 0.0f;
 };
 
 } // namespace nori

@@ -1,9 +1,10 @@
 /// \file scene.h
-/// \brief The scene: meshes, accelerator, camera, sampler and integrator.
+/// \brief The scene: meshes, emitters, accelerator, camera, sampler and integrator.
 #pragma once
 
 #include <nori/accel.h>
 #include <nori/camera.h>
+#include <nori/emitter.h>
 #include <nori/integrator.h>
 #include <nori/sampler.h>
 
@@ -29,6 +30,16 @@ public:
     Integrator &integrator() { return *m_integrator; }
     const std::vector<std::unique_ptr<Mesh>> &meshes() const { return m_meshes; }
     const BoundingBox3f &bbox() const { return m_accel->bbox(); }
+    /// \brief The emitters of all meshes, in mesh order.
+    const std::vector<const Emitter *> &emitters() const { return m_emitters; }
+    /// \brief One emitter chosen uniformly with \p u in [0, 1) (null if there is none); its
+    /// probability is emitterChoicePdf().
+    const Emitter *sampleEmitter(float u) const {
+        if (m_emitters.empty()) return nullptr;
+        size_t i = std::min(size_t(u * float(m_emitters.size())), m_emitters.size() - 1);
+        return m_emitters[i];
+    }
+    float emitterChoicePdf() const { return m_emitters.empty() ? 0.0f : 1.0f / float(m_emitters.size()); }
 
     void addChild(std::unique_ptr<NoriObject> child) override;
     /// \brief Checks that camera and integrator exist and builds the accelerator.
@@ -38,6 +49,7 @@ public:
 
 private:
     std::vector<std::unique_ptr<Mesh>> m_meshes;
+    std::vector<const Emitter *> m_emitters;
     std::unique_ptr<Accel> m_accel;
     std::unique_ptr<Camera> m_camera;
     std::unique_ptr<Sampler> m_sampler;

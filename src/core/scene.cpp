@@ -1,3 +1,5 @@
+/// \file scene.cpp
+/// \brief The scene: collects its children, builds the accelerator, counts rays.
 #include <nori/scene.h>
 
 namespace nori {
@@ -33,6 +35,9 @@ void Scene::addChild(std::unique_ptr<NoriObject> child) {
     };
     switch (child->getClassType()) {
     case EMesh: m_meshes.push_back(downcast<Mesh>(std::move(child))); break;
+    case EEmitter:
+        throw NoriException("{}: an <emitter> must be nested in the <mesh> it covers (only area lights exist)",
+                            child->location());
     case EAccel:
         if (m_accel) duplicate("an accel");
         m_accel = downcast<Accel>(std::move(child));
@@ -57,7 +62,10 @@ void Scene::activate() {
     if (!m_camera) throw NoriException("{}: the scene has no <camera>", location());
     if (!m_integrator) throw NoriException("{}: the scene has no <integrator>", location());
     if (!m_accel || !m_sampler) throw NoriException("{}: internal error: no accel or sampler", location());
-    for (const auto &mesh : m_meshes) m_accel->addMesh(mesh.get());
+    for (const auto &mesh : m_meshes) {
+        m_accel->addMesh(mesh.get());
+        if (mesh->emitter()) m_emitters.push_back(mesh->emitter());
+    }
     m_accel->build();
     m_integrator->preprocess(*this);
 }
