@@ -94,7 +94,7 @@ TEST(ObjLoaderFile, DirectoryInsteadOfFile) {
     std::string path = dir.file("sub.obj");
     fs::create_directory(path);
     std::string msg = errorOf([&] { loadObjFile(path); });
-    EXPECT_EQ(msg, path + ": cannot open: Is a directory");
+    EXPECT_EQ(msg, path + ": cannot open: Is a directory, not a mesh file");
 }
 
 TEST(ObjLoaderFile, CorruptGzip) {
