@@ -126,6 +126,17 @@ public:
     }
 
     std::unique_ptr<NoriObject> parse() {
+        pugi::xml_document doc;
+        pugi::xml_node root = documentElement(doc);
+        PropertyList unusedProps;
+        Transform unusedTransform;
+        std::unique_ptr<NoriObject> object = parseElement(root, Tag::Unknown, unusedProps, unusedTransform);
+        if (!object) throw NoriException("{}: the root element must be an object such as <scene>", where(root));
+        return object;
+    }
+
+    /// The document's single top-level element (XML errors throw), before any object is built.
+    pugi::xml_node documentElement(pugi::xml_document &doc) {
         // UTF-16 and UTF-32 (with or without a byte order mark, XML 1.0 appendix F) would only
         // be called binary below: name the encoding instead.
         static const std::pair<const char *, std::string> encodings[] = {
@@ -141,7 +152,6 @@ public:
         size_t nul = m_text.find('\0');
         if (nul != std::string::npos)
             throw NoriException("{}: binary data (a NUL byte), not an XML scene file", where(ptrdiff_t(nul)));
-        pugi::xml_document doc;
         pugi::xml_parse_result result = doc.load_buffer(m_text.data(), m_text.size(), pugi::parse_default);
         // pugixml reports "no document element" at the end of the file; line 1 is more useful.
         if (result.status == pugi::status_no_document_element)
@@ -154,11 +164,7 @@ public:
         for (pugi::xml_node extra = root.next_sibling(); extra; extra = extra.next_sibling())
             if (extra.type() == pugi::node_element)
                 fail(extra, fmt::format("a second top-level element <{}> (a scene file has one root)", extra.name()));
-        PropertyList unusedProps;
-        Transform unusedTransform;
-        std::unique_ptr<NoriObject> object = parseElement(root, Tag::Unknown, unusedProps, unusedTransform);
-        if (!object) throw NoriException("{}: the root element must be an object such as <scene>", where(root));
-        return object;
+        return root;
     }
 
 private:
@@ -479,10 +485,17 @@ std::unique_ptr<NoriObject> loadFromXML(const std::string &path, const SceneOver
     return parser.parse();
 }
 
+std::string rootElementName(const std::string &path) {
+    const SceneOverrides none;
+    SceneParser parser(path, readSceneFile(path), none);
+    pugi::xml_document doc;
+    return parser.documentElement(doc).name();
+}
+
 std::unique_ptr<Scene> loadScene(const std::string &path, const SceneOverrides &overrides) {
     std::unique_ptr<NoriObject> root = loadFromXML(path, overrides);
     if (root->getClassType() != NoriObject::EScene)
-        throw NoriException("{}: the root element is <{}>, expected <scene>", root->location(),
+        throw NoriException("{}: the root element is <{}>, expected <scene> (or <test> for a test file)", root->location(),
                             NoriObject::classTypeName(root->getClassType()));
     return std::unique_ptr<Scene>(static_cast<Scene *>(root.release()));
 }
