@@ -487,7 +487,7 @@ std::unique_ptr<NoriObject> loadFromXML(const std::string &path, const SceneOver
 
 std::string rootElementName(const std::string &path) {
     const SceneOverrides none;
-    SceneParser parser(path, readSceneFile(path), none);
+    SceneParser parser(path, readInputFile(path, "scene file", MaxSceneBytes), none);
     pugi::xml_document doc;
     return parser.documentElement(doc).name();
 }
