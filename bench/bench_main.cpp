@@ -7,7 +7,10 @@
 #include "mesh_source.h"
 #include "octree_catalog.h"
 #include "plot_runner.h"
+#include "render_compare.h"
+#include "render_report.h"
 #include <app/cli_app.h>
+#include <nori/atomic_file.h>
 #include <fmt/ranges.h>
 #include <tbb/global_control.h>
 #include <cstdio>
@@ -30,12 +33,34 @@ std::string commandLine(int argc, char **argv) {
     return fmt::format("{}", fmt::join(words, " "));
 }
 
+/// --render: the scene rendered with its octree and with Embree; times and image difference.
+int runRender(const BenchOptions &options, const std::string &command) {
+    RenderCompareSettings settings;
+    settings.scene = options.scene;
+    settings.spp = options.wasGiven("--spp") ? options.spp : 0;
+    settings.threads = options.threads;
+    settings.repeats = options.repeats;
+    settings.embreeRobust = options.embreeRobust;
+    settings.imagesDir = options.renderImages;
+    RenderComparison result = RenderCompare::run(settings);
+    if (!options.jsonPath.empty()) {
+        AtomicFile::write(options.jsonPath, RenderReport::json(result, command));
+        std::fprintf(stderr, "[nori-bench] wrote %s\n", options.jsonPath.c_str());
+    }
+    if (!options.markdownPath.empty()) {
+        AtomicFile::write(options.markdownPath, RenderReport::markdown(result, command));
+        std::fprintf(stderr, "[nori-bench] wrote %s\n", options.markdownPath.c_str());
+    }
+    if (options.jsonPath.empty() && options.markdownPath.empty())
+        std::fputs(RenderReport::markdown(result, command).c_str(), stdout);
+    return 0;
+}
+
 int runBench(const BenchOptions &options, const std::string &command) {
     std::unique_ptr<tbb::global_control> limit;
     if (options.threads > 0)
         limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                       size_t(options.threads));
-
     std::string jsonPath = options.jsonPath;
     if (jsonPath.empty() && !options.plotsDir.empty()) jsonPath = options.plotsDir + "/bench.json";
     // The folders of the reports are made before the (long) measurement, so that it cannot fail after it.
@@ -45,6 +70,7 @@ int runBench(const BenchOptions &options, const std::string &command) {
         if (!path.empty() && !folder.empty()) std::filesystem::create_directories(folder, ec);
         if (ec) throw NoriException("{}: cannot create the folder {}: {}", path, folder.string(), ec.message());
     }
+    if (options.render) return runRender(options, command);
 
     OctreeCatalog catalog(options);
     if (!OctreeCatalog::available())

@@ -12,6 +12,7 @@ namespace {
 const char *const InputGroup = "Inputs";
 const char *const ContenderGroup = "Contenders (octree: the cross product of these lists)";
 const char *const MeasureGroup = "Measurement";
+const char *const RenderGroup = "Full-render mode (with --scene)";
 const char *const OutputGroup = "Output";
 
 /// A comma-separated list option whose items \p item accepts, stored through \p store.
@@ -100,6 +101,19 @@ void OptionParser::declare(CliApp &cli, BenchOptions &o) {
                  "tiny CI configuration (64x64x1 rays, 1 repeat, depths 6,10; a generated mesh when no --mesh is given)")
         ->group(MeasureGroup);
 
+    CLI::Option *render =
+        app.add_flag("--render", o.render,
+                     "render the scene with its own accel (the octree) and with Embree, same samples: both render "
+                     "times (median of --repeats, interleaved), their ratio and the image difference; --spp "
+                     "overrides the scene's sample count")
+            ->needs(scene)
+            ->group(RenderGroup);
+    app.add_option("--render-images", o.renderImages,
+                   "write octree.exr/png, embree.exr/png and diff.png (|difference| x 10) there")
+        ->needs(render)->option_text("DIR")->group(RenderGroup);
+    app.add_flag("--embree-robust", o.embreeRobust, "Embree with RTC_SCENE_FLAG_ROBUST")
+        ->needs(render)->group(RenderGroup);
+
     app.add_option("--json", o.jsonPath, "results as JSON (an array when several meshes are given)")
         ->option_text("FILE")->group(OutputGroup);
     app.add_option("--markdown", o.markdownPath, "Table 1 layout plus Embree and ratios")
@@ -108,6 +122,7 @@ void OptionParser::declare(CliApp &cli, BenchOptions &o) {
                              ->option_text("DIR")->group(OutputGroup);
     app.add_option("--python", o.python, "interpreter for the charts (default /usr/bin/python3)")
         ->needs(plots)->option_text("EXE")->group(OutputGroup);
+    render->excludes(plots);
     app.footer("Progress goes to stderr; a bad argument prints one line and exits with status 2.");
 }
 

@@ -30,6 +30,9 @@ struct BenchOptions {
     bool noBrute = false;             ///< --no-brute (extra)
     size_t bruteRays = 4096;          ///< --brute-rays: rays per set for brute force (extra)
     size_t bruteMaxTriangles = 100000;
+    bool render = false;              ///< --render: full renders with the octree and with Embree
+    std::string renderImages;         ///< --render-images DIR: both renders and their difference
+    bool embreeRobust = false;        ///< --embree-robust: render mode's Embree in robust mode
     std::string jsonPath, markdownPath, plotsDir;
     std::string python = "/usr/bin/python3";
     std::vector<std::string> searchPath;  ///< -a (repeatable)

@@ -1,3 +1,5 @@
+/// \file bench_runner.cpp
+/// \brief Runs every contender on one input, interleaved with Embree, and collects the results (implementation).
 #include "bench_runner.h"
 #include "embree_oracle.h"
 #include "ray_sets.h"
@@ -55,7 +57,7 @@ std::array<SetTiming, 3> BenchRunner::interleaved(const Tracer &tracer, const Em
         t.embreeMs = median(embreeRuns);
         t.ratioVsEmbree = t.ms > 0.0 ? t.embreeMs / t.ms : 0.0;
         t.hasAccuracy = true;
-        t.accuracy = Accuracy::compare(answers, set.reference);
+        t.accuracy = Accuracy::compare(answers, set.reference, set.rays);
         if (embreeSamples) {
             auto &dst = (*embreeSamples)[size_t(s)];
             dst.insert(dst.end(), embreeRuns.begin(), embreeRuns.end());
@@ -192,7 +194,7 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
         t.ratioVsEmbree = 1.0;
         m_timer.trace(*fast, work.set(s), answers);
         t.hasAccuracy = true;
-        t.accuracy = Accuracy::compare(answers, work.set(s).reference);
+        t.accuracy = Accuracy::compare(answers, work.set(s).reference, work.set(s).rays);
     }
     const auto &e = result.embree.sets;
     std::fprintf(stderr, "[nori-bench]   embree: primary %.3f, diffuse %.3f, shadow %.3f Mrays/s\n",

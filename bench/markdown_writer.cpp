@@ -1,3 +1,5 @@
+/// \file markdown_writer.cpp
+/// \brief The seed's Table 1 layout (per depth) with Embree's column, plus a table of every run (implementation).
 #include "markdown_writer.h"
 #include <nori/atomic_file.h>
 #include <fmt/ranges.h>

@@ -1,3 +1,5 @@
+/// \file mesh_source.cpp
+/// \brief Where nori-bench gets its geometry: OBJ files, a Nori scene, or a generated mesh (implementation).
 #include "mesh_source.h"
 #include <nori/objloader.h>
 #include <nori/parser.h>

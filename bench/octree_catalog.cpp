@@ -1,3 +1,5 @@
+/// \file octree_catalog.cpp
+/// \brief The octree configurations to benchmark: the cross product of the option lists (implementation).
 #include "octree_catalog.h"
 #include <nori/object.h>
 #include <regex>

@@ -1,3 +1,5 @@
+/// \file plot_runner.cpp
+/// \brief Draws the charts by running bench/plot.py on a results JSON file (implementation).
 #include "plot_runner.h"
 #include <nori/common.h>
 #include <cerrno>

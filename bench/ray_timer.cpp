@@ -1,3 +1,5 @@
+/// \file ray_timer.cpp
+/// \brief Traces a ray set through one intersector and times it (the only timed code) (implementation).
 #include "ray_timer.h"
 #include "embree_oracle.h"
 #include <nori/accel.h>

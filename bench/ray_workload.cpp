@@ -1,3 +1,5 @@
+/// \file ray_workload.cpp
+/// \brief The three ray sets every contender traces, generated once, with Embree-robust answers (implementation).
 #include "ray_workload.h"
 #include "embree_oracle.h"
 #include "ray_sets.h"

@@ -40,11 +40,17 @@ public:
     /// \brief Write \p bytes to \p path in one step: construct, write, commit.
     static void write(const std::string &path, std::string_view bytes);
 
+    /// \brief Remove every temporary file of this process that is not committed yet. Only
+    /// async-signal-safe calls: for a signal handler that is about to end the process.
+    static void removeTemporariesNow() noexcept;
+
 private:
     [[noreturn]] void fail(const std::string &what, int error);
+    void release() noexcept;
 
     std::string m_path, m_temporary;
     int m_fd = -1;
+    int m_slot = -1;      ///< in the registry removeTemporariesNow() reads
     bool m_done = false;  ///< renamed or discarded: nothing left to clean up
 };
 

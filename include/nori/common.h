@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace nori {
 
@@ -37,6 +38,21 @@ public:
     explicit NoriException(fmt::format_string<Args...> format, Args &&...args)
         : std::runtime_error(fmt::format(format, std::forward<Args>(args)...)) {}
 };
+
+/// \brief \p text as an error message may echo it: control characters become '?' (the message
+/// stays one line, no escape sequence reaches the terminal) and more than \p maxBytes bytes are
+/// cut at a UTF-8 character boundary, with an ellipsis.
+inline std::string shown(std::string_view text, size_t maxBytes = 60) {
+    size_t cut = text.size();
+    if (cut > maxBytes) {
+        cut = maxBytes;
+        while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+    }
+    std::string out(text.substr(0, cut));
+    for (char &c : out)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return cut < text.size() ? out + "\u2026" : out;
+}
 
 /// \brief Degrees to radians.
 inline float degToRad(float deg) { return deg * (Pi / 180.0f); }

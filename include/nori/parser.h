@@ -20,6 +20,10 @@ struct SceneOverrides {
 /// NoriException whose message starts with "FILE:LINE:COL:".
 std::unique_ptr<NoriObject> loadFromXML(const std::string &path, const SceneOverrides &overrides = {});
 
+/// \brief The name of the root element of \p path ("scene", "test", ...), read without building
+/// any object; XML errors throw as in loadFromXML().
+std::string rootElementName(const std::string &path);
+
 /// \brief loadFromXML() for a file whose root must be a <scene>.
 std::unique_ptr<Scene> loadScene(const std::string &path, const SceneOverrides &overrides = {});
 

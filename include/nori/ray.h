@@ -45,6 +45,9 @@ Vector3f interpolationError(const Point3f &p0, const Point3f &p1, const Point3f 
 /// of similar size) again; \p pError is interpolationError() of p. Derivation in src/core/ray.cpp.
 float spawnOffset(const Point3f &p0, const Point3f &p1, const Point3f &p2, const Point3f &p, const Vector3f &pError,
                   const Normal3f &ng);
+/// \brief spawnOffset() when the caller already has twice the triangle's area, |(p1 - p0) x (p2 - p0)|.
+float spawnOffset(const Point3f &p0, const Point3f &p1, const Point3f &p2, const Point3f &p, const Vector3f &pError,
+                  const Normal3f &ng, float twiceArea);
 
 /// \brief Move the surface point \p p by \p offset along \p ng, to the side that \p d points into,
 /// then one ulp further per component so that rounding the sum cannot give any distance back.

@@ -22,7 +22,10 @@ struct RenderResult {
     bool complete = false;      ///< false if cancelled
     int blocksRendered = 0;
     int blockCount = 0;
-    uint64_t rays = 0;          ///< rays traced (camera + secondary)
+    uint64_t rays = 0;          ///< rays traced: closestHitRays + shadowRays
+    uint64_t cameraRays = 0;    ///< camera rays generated (one per sample; integrators trace each as a closest hit)
+    uint64_t closestHitRays = 0;///< closest-hit queries (camera rays and bounces)
+    uint64_t shadowRays = 0;    ///< any-hit queries (shadow rays)
     uint64_t droppedSamples = 0;///< non-finite samples left out of the image
     double milliseconds = 0.0;
 };

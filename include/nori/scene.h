@@ -20,8 +20,15 @@ public:
     bool rayIntersect(const Ray3f &ray, Intersection &its) const;
     /// \brief Is anything in [ray.mint, ray.maxt]? (a shadow ray; counts one ray)
     bool rayIntersect(const Ray3f &ray) const;
-    /// \brief Rays traced by the calling thread so far (the renderer takes differences).
-    static uint64_t threadRayCount();
+    /// \brief Rays traced by the calling thread so far, by kind (the renderer takes differences).
+    struct RayCounts {
+        uint64_t closestHit = 0;  ///< rayIntersect(ray, its): camera rays and bounces
+        uint64_t shadow = 0;      ///< rayIntersect(ray): any-hit (occlusion) queries
+        uint64_t total() const { return closestHit + shadow; }
+    };
+    static RayCounts threadRayCounts();
+    /// \brief threadRayCounts().total().
+    static uint64_t threadRayCount() { return threadRayCounts().total(); }
 
     const Accel &accel() const { return *m_accel; }
     const Camera &camera() const { return *m_camera; }

@@ -12,6 +12,13 @@ public:
     Transform() : m_matrix(Matrix4f::Identity()), m_inverse(Matrix4f::Identity()) {}
     /// \brief From a matrix; the inverse is computed (throws NoriException if singular).
     explicit Transform(const Matrix4f &matrix);
+
+    /// \brief Finite, with a finite inverse, and not (nearly) singular. The test is relative
+    /// and scale-aware: for an affine map only its linear part counts (a translation by 1e8 is
+    /// fine), compared with the product of its column lengths, so uniform scaling does not matter.
+    bool isInvertible() const;
+    /// \brief isInvertible() for a matrix.
+    static bool isWellConditioned(const Matrix4f &matrix);
     Transform(const Matrix4f &matrix, const Matrix4f &inverse) : m_matrix(matrix), m_inverse(inverse) {}
 
     const Matrix4f &matrix() const { return m_matrix; }

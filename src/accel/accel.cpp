@@ -1,3 +1,5 @@
+/// \file accel.cpp
+/// \brief Ray-intersection acceleration structure interface (closest hit and any hit) (implementation).
 #include <nori/accel.h>
 #include <algorithm>
 #include <chrono>
@@ -48,10 +50,11 @@ void Accel::completeIntersection(const Ray3f &ray, const Hit &hit, Intersection 
     } else {
         its.uv = Point2f(b1, b2);
     }
-    Normal3f ng = mesh->geometricNormal(f);
-    if (ng.isZero()) ng = -ray.d.normalized();  // degenerate triangle: face the ray
+    Vector3f cross = (P[face[1]] - P[face[0]]).cross(P[face[2]] - P[face[0]]);
+    float twiceArea = cross.norm();
+    Normal3f ng = twiceArea > 0.0f ? Normal3f(cross / twiceArea) : Normal3f(-ray.d.normalized());  // degenerate: face the ray
     its.geoFrame = Frame(ng);
-    its.offset = spawnOffset(P[face[0]], P[face[1]], P[face[2]], its.p, pError, ng);
+    its.offset = spawnOffset(P[face[0]], P[face[1]], P[face[2]], its.p, pError, ng, twiceArea);
     if (mesh->hasNormals()) {
         const auto &N = mesh->normals();
         Normal3f ns = b0 * N[face[0]] + b1 * N[face[1]] + b2 * N[face[2]];

@@ -1,4 +1,5 @@
-/// Brute-force accelerator: tests every triangle. Reference and baseline only.
+/// \file brute.cpp
+/// \brief Brute-force accelerator: tests every triangle. Reference and baseline only.
 #include "triangle.h"
 
 namespace nori {

@@ -1,25 +1,27 @@
-// Ray/triangle intersectors and the leaf triangle store.
-// No FMA contraction in this file: see triangle.h for why results must be bit-reproducible.
-#pragma GCC optimize("fp-contract=off")
+/// \file triangle.cpp
+/// \brief Ray/triangle kernels (Möller–Trumbore, watertight), chunk boxes and the leaf triangle
+/// store, written once over lanes::VFloat<L> and instantiated for 16, 8 and 1 lanes.
+///
+/// Compiled with -ffp-contract=off (src/accel/CMakeLists.txt): see triangle.h for why every
+/// width must give bit-identical results.
 // GCC 12's _mm512_max_ps / _mm512_min_ps expand to _mm512_undefined_ps(), which -Wuninitialized
 // reports once inlined here; the value is never read.
 #pragma GCC diagnostic ignored "-Wuninitialized"
 
 #include "triangle.h"
-#include <cmath>
+#include "lanes.h"
 #include <algorithm>
+#include <cmath>
 #include <cstring>
-
-// Widest kernels the compiler may use: sixteen lanes with AVX-512, eight with AVX2, else scalar.
-#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
-#include <immintrin.h>
-#define NORI_TRIANGLE_AVX512 1
-#elif defined(__AVX2__)
-#include <immintrin.h>
-#define NORI_TRIANGLE_AVX2 1
-#endif
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
 
 namespace nori {
+
+using lanes::kMaxLanes;
+using lanes::VFloat;
+using lanes::VMask;
 
 Intersector parseIntersector(const PropertyList &props, const std::string &defaultValue) {
     std::string name = props.getString("intersector", defaultValue);
@@ -50,65 +52,6 @@ TriangleRay::TriangleRay(const Ray3f &ray) {
         rcpNear[a] = ray.dRcp[a] * (1.0f - 0x1p-20f);
         rcpFar[a] = ray.dRcp[a] * (1.0f + 0x1p-20f);
     }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Scalar kernels. The SIMD kernels below perform the same IEEE operations in the same order.
-
-bool intersectMT(const TriangleRay &r, const float v0[3], const float e1[3], const float e2[3], float maxt,
-                 float &t, float &u, float &v) {
-    // Möller & Trumbore 1997: Cramer's rule on [-d, e1, e2] (t, u, v) = o - v0.
-    float px = r.d[1] * e2[2] - r.d[2] * e2[1];
-    float py = r.d[2] * e2[0] - r.d[0] * e2[2];
-    float pz = r.d[0] * e2[1] - r.d[1] * e2[0];
-    float det = e1[0] * px + e1[1] * py + e1[2] * pz;
-    if (det == 0.0f) return false;
-    float invDet = 1.0f / det;
-    float tx = r.o[0] - v0[0], ty = r.o[1] - v0[1], tz = r.o[2] - v0[2];
-    u = (tx * px + ty * py + tz * pz) * invDet;
-    if (u < 0.0f || u > 1.0f) return false;
-    float qx = ty * e1[2] - tz * e1[1];
-    float qy = tz * e1[0] - tx * e1[2];
-    float qz = tx * e1[1] - ty * e1[0];
-    v = (r.d[0] * qx + r.d[1] * qy + r.d[2] * qz) * invDet;
-    if (v < 0.0f || u + v > 1.0f) return false;
-    t = (e2[0] * qx + e2[1] * qy + e2[2] * qz) * invDet;
-    return t >= r.mint && t <= maxt;
-}
-
-namespace {
-/// Edge functions in double precision: the products of floats are exact, so the sign is right
-/// even when the float evaluation cancels to zero (Woop et al. 2013, section 4).
-void edgeFunctionsDouble(float ax, float ay, float bx, float by, float cx, float cy, float &U, float &V, float &W) {
-    U = float(double(cx) * double(by) - double(cy) * double(bx));
-    V = float(double(ax) * double(cy) - double(ay) * double(cx));
-    W = float(double(bx) * double(ay) - double(by) * double(ax));
-}
-} // namespace
-
-bool intersectWatertight(const TriangleRay &r, const float p0[3], const float p1[3], const float p2[3], float maxt,
-                         float &t, float &u, float &v) {
-    // Vertices relative to the origin, then sheared so that the ray is the +z axis.
-    float az0 = p0[r.kz] - r.o[r.kz], bz0 = p1[r.kz] - r.o[r.kz], cz0 = p2[r.kz] - r.o[r.kz];
-    float ax = (p0[r.kx] - r.o[r.kx]) - r.sx * az0, ay = (p0[r.ky] - r.o[r.ky]) - r.sy * az0;
-    float bx = (p1[r.kx] - r.o[r.kx]) - r.sx * bz0, by = (p1[r.ky] - r.o[r.ky]) - r.sy * bz0;
-    float cx = (p2[r.kx] - r.o[r.kx]) - r.sx * cz0, cy = (p2[r.ky] - r.o[r.ky]) - r.sy * cz0;
-    // Scaled barycentrics: U weighs p0, V weighs p1, W weighs p2.
-    float U = cx * by - cy * bx;
-    float V = ax * cy - ay * cx;
-    float W = bx * ay - by * ax;
-    if (U == 0.0f || V == 0.0f || W == 0.0f) edgeFunctionsDouble(ax, ay, bx, by, cx, cy, U, V, W);
-    // Both windings are hits: the three must not have mixed signs.
-    if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return false;
-    float det = U + V + W;
-    if (det == 0.0f) return false;
-    float T = U * (r.sz * az0) + V * (r.sz * bz0) + W * (r.sz * cz0);
-    float invDet = 1.0f / det;
-    t = T * invDet;
-    if (!(t >= r.mint && t <= maxt)) return false;
-    u = V * invDet;
-    v = W * invDet;
-    return true;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -184,12 +127,6 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
 }
 
 namespace {
-/// Load triangle i of a leaf whose rows have stride n.
-inline void loadCorner(const float *rows, uint32_t n, uint32_t i, int first, float out[3]) {
-    out[0] = rows[(first + 0) * n + i];
-    out[1] = rows[(first + 1) * n + i];
-    out[2] = rows[(first + 2) * n + i];
-}
 
 inline uint32_t primAt(const float *rows, uint32_t n, uint32_t i) {
     uint32_t p;
@@ -197,392 +134,288 @@ inline uint32_t primAt(const float *rows, uint32_t n, uint32_t i) {
     return p;
 }
 
-/// Scalar kernel on one triangle of a leaf.
-inline bool testOne(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t i, float maxt,
-                    float &t, float &u, float &v) {
-    float a[3], b[3], c[3];
-    loadCorner(rows, n, i, 0, a);
-    loadCorner(rows, n, i, 3, b);
-    loadCorner(rows, n, i, 6, c);
-    return kind == Intersector::MT ? intersectMT(ray, a, b, c, maxt, t, u, v)
-                                   : intersectWatertight(ray, a, b, c, maxt, t, u, v);
+/// Row \p row of a leaf (stride n) at triangles i .. i + L - 1; lanes outside \p m are zero.
+/// (The step kernels are forced inline: as calls, their results would travel through memory.)
+template <int L>
+inline VFloat<L> loadRow(const float *rows, uint32_t n, int row, uint32_t i, VMask<L> m) {
+    return VFloat<L>::load(rows + size_t(row) * n + i, m);
 }
 
-/// Scalar closest hit over chunk k (triangles 16k .. 16k + 15); lexicographic minimum (t, prim).
-bool chunkIntersectScalar(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
-                          Hit &best) {
+/// One kernel step over L consecutive triangles of a leaf: per lane t, u, v and whether the
+/// lane is a hit with t in [mint, maxt] (t, u, v are meaningless in the other lanes).
+template <int L>
+struct Step {
+    VFloat<L> t, u, v;
+    VMask<L> hit;
+};
+
+/// Möller & Trumbore 1997: Cramer's rule on [-d, e1, e2] (t, u, v) = o - v0, on rows
+/// v0, e1 = v1 - v0, e2 = v2 - v0. Known leaks: u, v and u + v are rounded independently for
+/// the two triangles of a shared edge, so a ray through (or within a few ulps of) the edge can
+/// miss both; tests/accel/test_triangle_decisions.cpp measures how often.
+template <int L>
+[[gnu::always_inline]] inline Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
+    using F = VFloat<L>;
+    const F dx = r.d[0], dy = r.d[1], dz = r.d[2];
+    F e1x = loadRow(rows, n, 3, i, m), e1y = loadRow(rows, n, 4, i, m), e1z = loadRow(rows, n, 5, i, m);
+    F e2x = loadRow(rows, n, 6, i, m), e2y = loadRow(rows, n, 7, i, m), e2z = loadRow(rows, n, 8, i, m);
+    F px = dy * e2z - dz * e2y;
+    F py = dz * e2x - dx * e2z;
+    F pz = dx * e2y - dy * e2x;
+    F det = e1x * px + e1y * py + e1z * pz;
+    VMask<L> valid = m & (det != 0.0f);
+    F invDet = F(1.0f) / det;
+    F tx = F(r.o[0]) - loadRow(rows, n, 0, i, m);
+    F ty = F(r.o[1]) - loadRow(rows, n, 1, i, m);
+    F tz = F(r.o[2]) - loadRow(rows, n, 2, i, m);
+    F u = (tx * px + ty * py + tz * pz) * invDet;
+    // Reject u < 0 or u > 1 (ordered compares: a NaN is rejected by the t test below).
+    valid = valid & ~((u < 0.0f) | (u > 1.0f));
+    if (!any(valid)) return {u, u, u, valid};  // most steps: every lane fails already
+    F qx = ty * e1z - tz * e1y;
+    F qy = tz * e1x - tx * e1z;
+    F qz = tx * e1y - ty * e1x;
+    F v = (dx * qx + dy * qy + dz * qz) * invDet;
+    valid = valid & ~((v < 0.0f) | (u + v > 1.0f));
+    F t = (e2x * qx + e2y * qy + e2z * qz) * invDet;
+    valid = valid & (t >= r.mint) & (t <= maxt);
+    return {t, u, v, valid};
+}
+
+/// x rounded to float, except that a nonzero x too small for a float keeps its sign (as the
+/// smallest subnormal): only the sign of an edge function decides a hit.
+inline float signedFloat(double x) {
+    const float f = float(x);
+    return f != 0.0f || x == 0.0 ? f : std::copysign(std::numeric_limits<float>::denorm_min(), f);
+}
+
+/// Sheared corners (ax, ay, bx, by, cx, cy) and edge functions of one watertight step.
+template <int L>
+struct Sheared {
+    VFloat<L> c[6];
+};
+template <int L>
+struct Edges {
+    VFloat<L> U, V, W;
+};
+
+/// The lanes of \p redo get their edge functions again in double precision. The products of two
+/// floats are exact in double and a difference of doubles is zero only when they are equal, so
+/// the sign is exact (Woop et al. 2013, section 4); the float evaluation can only have rounded a
+/// nonzero value to zero (rounding is monotonic, it never flips a sign). A rare, out-of-line
+/// path taking its arguments by value, so that the common path keeps them in registers.
+template <int L>
+[[gnu::noinline, gnu::cold]] Edges<L> exactEdgeFunctions(VMask<L> redo, Sheared<L> s, Edges<L> e) {
+    float c[6][L], u[L], v[L], w[L];
+    for (int k = 0; k < 6; ++k) s.c[k].storeu(c[k]);
+    e.U.storeu(u);
+    e.V.storeu(v);
+    e.W.storeu(w);
+    for (unsigned b = bits(redo); b; b &= b - 1) {
+        const int j = __builtin_ctz(b);
+        const double ax = c[0][j], ay = c[1][j], bx = c[2][j], by = c[3][j], cx = c[4][j], cy = c[5][j];
+        u[j] = signedFloat(cx * by - cy * bx);
+        v[j] = signedFloat(ax * cy - ay * cx);
+        w[j] = signedFloat(bx * ay - by * ax);
+    }
+    return {VFloat<L>::loadu(u), VFloat<L>::loadu(v), VFloat<L>::loadu(w)};
+}
+
+/// Woop, Benthin & Wald 2013 (JCGT 2(1)) on rows p0, p1, p2: vertices relative to the origin,
+/// sheared so that the ray is the +z axis, then 2D edge functions; both windings hit.
+template <int L>
+[[gnu::always_inline]] inline Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
+    using F = VFloat<L>;
+    const F ox = r.o[r.kx], oy = r.o[r.ky], oz = r.o[r.kz], sx = r.sx, sy = r.sy, sz = r.sz;
+    F az = loadRow(rows, n, r.kz, i, m) - oz;
+    F bz = loadRow(rows, n, 3 + r.kz, i, m) - oz;
+    F cz = loadRow(rows, n, 6 + r.kz, i, m) - oz;
+    // Sheared corners.
+    const F ax = (loadRow(rows, n, r.kx, i, m) - ox) - sx * az, ay = (loadRow(rows, n, r.ky, i, m) - oy) - sy * az;
+    const F bx = (loadRow(rows, n, 3 + r.kx, i, m) - ox) - sx * bz, by = (loadRow(rows, n, 3 + r.ky, i, m) - oy) - sy * bz;
+    const F cx = (loadRow(rows, n, 6 + r.kx, i, m) - ox) - sx * cz, cy = (loadRow(rows, n, 6 + r.ky, i, m) - oy) - sy * cz;
+    // Scaled barycentrics: U weighs p0, V weighs p1, W weighs p2.
+    F U = cx * by - cy * bx;
+    F V = ax * cy - ay * cx;
+    F W = bx * ay - by * ax;
+    const VMask<L> redo = m & ((U == 0.0f) | (V == 0.0f) | (W == 0.0f));
+    if (any(redo)) {
+        const Edges<L> e = exactEdgeFunctions(redo, Sheared<L>{{ax, ay, bx, by, cx, cy}}, Edges<L>{U, V, W});
+        U = e.U, V = e.V, W = e.W;
+    }
+    // Hit unless the signs are mixed (zero counts as either sign).
+    const VMask<L> neg = (U < 0.0f) | (V < 0.0f) | (W < 0.0f), pos = (U > 0.0f) | (V > 0.0f) | (W > 0.0f);
+    VMask<L> valid = m & ~(neg & pos);
+    if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
+    F det = U + V + W;
+    valid = valid & (det != 0.0f);
+    F T = U * (sz * az) + V * (sz * bz) + W * (sz * cz);
+    F invDet = F(1.0f) / det;
+    F t = T * invDet;
+    valid = valid & (t >= r.mint) & (t <= maxt);
+    return {t, V * invDet, W * invDet, valid};
+}
+
+template <int L>
+[[gnu::always_inline]] inline Step<L> testStep(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, float maxt) {
+    const VMask<L> m = VMask<L>::firstN(n - i);
+    return kind == Intersector::MT ? mollerTrumbore<L>(r, rows, n, i, m, maxt) : watertight<L>(r, rows, n, i, m, maxt);
+}
+
+/// Closest hit over chunk k (triangles 16k .. 16k + 15) in steps of L lanes: the lexicographic
+/// minimum of (t, prim), so ties resolve the same way at every width.
+template <int L>
+bool chunkIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k, Hit &best) {
     bool found = false;
-    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i) {
-        float t, u, v;
-        uint32_t prim = primAt(rows, n, i);
-        if (testOne(kind, ray, rows, n, i, best.t, t, u, v) && (t < best.t || prim < best.prim)) {
-            best = Hit{t, u, v, prim};
+    const uint32_t end = std::min(n, 16 * k + 16);
+    for (uint32_t i = 16 * k; i < end; i += L) {
+        Step<L> s = testStep<L>(kind, ray, rows, n, i, best.t);
+        if (!any(s.hit)) continue;
+        const float tmin = reduceMin(s.hit, s.t);
+        int winner = -1;
+        uint32_t prim = ~0u;
+        for (unsigned b = bits(s.hit & (s.t == tmin)); b; b &= b - 1) {
+            const int j = __builtin_ctz(b);
+            const uint32_t p = primAt(rows, n, i + uint32_t(j));
+            if (p < prim) prim = p, winner = j;
+        }
+        if (tmin < best.t || (tmin == best.t && prim < best.prim)) {
+            best = Hit{tmin, lane(s.u, winner), lane(s.v, winner), prim};
             found = true;
         }
     }
     return found;
 }
 
-/// Entry distances of the ray into chunk boxes [16 g, 16 g + 16) of a leaf with nc chunks;
-/// bit j of the result is set when chunk 16 g + j is entered within [ray.mint, maxt].
-/// The conservative slab test of the octree nodes; NaN never narrows the interval.
-unsigned chunkEntriesScalar(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, float tn[16]) {
+/// Entry distances of the ray into chunk boxes 16g .. 16g + 15 of a leaf (tn[j] for chunk
+/// 16g + j); bit j of the result is set when that chunk is entered within [ray.mint, maxt].
+/// The conservative slab test of the octree nodes; a NaN never narrows the interval.
+template <int L>
+unsigned chunkEntries(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, float tn[16]) {
+    using F = VFloat<L>;
     const uint32_t nc = (n + 15) / 16;
     const float *boxes = rows + size_t(10) * n;
     unsigned mask = 0;
-    for (uint32_t j = 0; j < 16 && 16 * g + j < nc; ++j) {
-        uint32_t k = 16 * g + j;
-        float t0 = r.mint, t1 = maxt;
+    for (uint32_t k = 16 * g; k < std::min(nc, 16 * g + 16); k += L) {
+        const VMask<L> m = VMask<L>::firstN(nc - k);
+        F t0 = r.mint, t1 = maxt;
         for (int a = 0; a < 3; ++a) {
-            float tNear = (boxes[(3 * r.neg[a] + a) * nc + k] - r.o[a]) * r.rcpNear[a];
-            float tFar = (boxes[(3 * (1 - r.neg[a]) + a) * nc + k] - r.o[a]) * r.rcpFar[a];
-            t0 = tNear > t0 ? tNear : t0;
-            t1 = tFar < t1 ? tFar : t1;
+            F nearPlane = F::load(boxes + size_t(3 * r.neg[a] + a) * nc + k, m);
+            F farPlane = F::load(boxes + size_t(3 * (1 - r.neg[a]) + a) * nc + k, m);
+            t0 = max((nearPlane - r.o[a]) * r.rcpNear[a], t0);
+            t1 = min((farPlane - r.o[a]) * r.rcpFar[a], t1);
         }
-        tn[j] = t0;
-        if (t0 <= t1) mask |= 1u << j;
+        t0.storeu(tn + (k - 16 * g));
+        mask |= bits(m & (t0 <= t1)) << (k - 16 * g);
     }
     return mask;
 }
 
-/// Loop over a leaf: chunks in order of entry distance (ties: lower index), skipping those
-/// entered beyond the closest hit; every kernel width visits exactly the same chunks.
-/// \p entries and \p chunkHit have the signatures of chunkEntriesScalar / chunkIntersectScalar.
-template <typename Entries, typename ChunkHit>
-bool intersectChunks(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, Hit &best,
-                     Entries entries, ChunkHit chunkHit) {
-    if (n <= 16) return chunkHit(kind, ray, rows, n, 0, best);
+/// Closest hit in a leaf: chunks in order of entry distance (ties: lower index), skipping those
+/// entered beyond the closest hit so far.
+template <int L>
+bool leafIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, Hit &best) {
+    if (n <= 16) return chunkIntersect<L>(kind, ray, rows, n, 0, best);
     bool found = false;
     const uint32_t nc = (n + 15) / 16;
     for (uint32_t g = 0; 16 * g < nc; ++g) {
         float tn[16];
-        unsigned mask = entries(ray, rows, n, g, best.t, tn);
+        unsigned mask = chunkEntries<L>(ray, rows, n, g, best.t, tn);
         while (mask) {
-            int k = -1;
-            for (unsigned m = mask; m; m &= m - 1) {
-                int j = __builtin_ctz(m);
-                if (k < 0 || tn[j] < tn[k]) k = j;
-            }
+            int k = __builtin_ctz(mask);
+            for (unsigned b = mask & (mask - 1); b; b &= b - 1)
+                if (tn[__builtin_ctz(b)] < tn[k]) k = __builtin_ctz(b);
             if (tn[k] > best.t) break;
             mask &= ~(1u << k);
-            found |= chunkHit(kind, ray, rows, n, 16 * g + uint32_t(k), best);
+            found |= chunkIntersect<L>(kind, ray, rows, n, 16 * g + uint32_t(k), best);
         }
     }
     return found;
 }
 
-bool intersectScalar(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, Hit &best) {
-    return intersectChunks(kind, ray, rows, n, best, chunkEntriesScalar, chunkIntersectScalar);
-}
-
-#if NORI_TRIANGLE_AVX512 || NORI_TRIANGLE_AVX2
-// The SIMD kernels, written once for both widths: __m512 (sixteen lanes, AVX-512) and __m256
-// (eight lanes, AVX2). Every lane performs exactly the scalar kernels' operations in the same
-// order (no FMA in this file), so the answers are bit-identical to the scalar ones. Lane masks
-// are bit sets (bit j: lane j), in mask registers with AVX-512.
-
-#if NORI_TRIANGLE_AVX512
-using Wide = __m512;
-using LaneMask = __mmask16;  // kept in mask registers
-inline Wide splat(float x) { return _mm512_set1_ps(x); }
-inline Wide add(Wide a, Wide b) { return _mm512_add_ps(a, b); }
-inline Wide sub(Wide a, Wide b) { return _mm512_sub_ps(a, b); }
-inline Wide mul(Wide a, Wide b) { return _mm512_mul_ps(a, b); }
-inline Wide div(Wide a, Wide b) { return _mm512_div_ps(a, b); }
-template <int Predicate>
-inline LaneMask cmp(Wide a, Wide b) { return _mm512_cmp_ps_mask(a, b, Predicate); }
-/// Lanes in \p m read from \p p, the others are zero (and never read from memory).
-inline Wide loadLanes(const float *p, LaneMask m) { return _mm512_maskz_loadu_ps(m, p); }
-#else
-using Wide = __m256;
-using LaneMask = unsigned;
-inline Wide splat(float x) { return _mm256_set1_ps(x); }
-inline Wide add(Wide a, Wide b) { return _mm256_add_ps(a, b); }
-inline Wide sub(Wide a, Wide b) { return _mm256_sub_ps(a, b); }
-inline Wide mul(Wide a, Wide b) { return _mm256_mul_ps(a, b); }
-inline Wide div(Wide a, Wide b) { return _mm256_div_ps(a, b); }
-template <int Predicate>
-inline LaneMask cmp(Wide a, Wide b) { return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a, b, Predicate))); }
-inline Wide loadLanes(const float *p, LaneMask m) {
-    const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-    return _mm256_maskload_ps(p, _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(m)), bits), bits));
-}
-#endif
-
-/// One SIMD step over consecutive triangles of a leaf.
-struct Lanes {
-    Wide t, u, v;
-    LaneMask valid;  ///< lanes with a hit in [mint, maxt]
-    LaneMask redo;   ///< watertight lanes that need the double-precision edge functions
-};
-
-inline Wide load(const float *rows, uint32_t n, int row, uint32_t i, LaneMask m) {
-    return loadLanes(rows + size_t(row) * n + i, m);
-}
-
-inline Lanes mtLanes(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, LaneMask m, float maxt) {
-    const Wide dx = splat(r.d[0]), dy = splat(r.d[1]), dz = splat(r.d[2]);
-    Wide e1x = load(rows, n, 3, i, m), e1y = load(rows, n, 4, i, m), e1z = load(rows, n, 5, i, m);
-    Wide e2x = load(rows, n, 6, i, m), e2y = load(rows, n, 7, i, m), e2z = load(rows, n, 8, i, m);
-    Wide px = sub(mul(dy, e2z), mul(dz, e2y));
-    Wide py = sub(mul(dz, e2x), mul(dx, e2z));
-    Wide pz = sub(mul(dx, e2y), mul(dy, e2x));
-    Wide det = add(add(mul(e1x, px), mul(e1y, py)), mul(e1z, pz));
-    const Wide zero = splat(0.0f), one = splat(1.0f);
-    LaneMask valid = m & cmp<_CMP_NEQ_UQ>(det, zero);
-    Wide invDet = div(one, det);
-    Wide tx = sub(splat(r.o[0]), load(rows, n, 0, i, m));
-    Wide ty = sub(splat(r.o[1]), load(rows, n, 1, i, m));
-    Wide tz = sub(splat(r.o[2]), load(rows, n, 2, i, m));
-    Wide u = mul(add(add(mul(tx, px), mul(ty, py)), mul(tz, pz)), invDet);
-    // Scalar: reject if (u < 0 || u > 1); ordered compares keep NaN lanes, as the scalar code does.
-    valid &= ~(cmp<_CMP_LT_OQ>(u, zero) | cmp<_CMP_GT_OQ>(u, one));
-    Wide qx = sub(mul(ty, e1z), mul(tz, e1y));
-    Wide qy = sub(mul(tz, e1x), mul(tx, e1z));
-    Wide qz = sub(mul(tx, e1y), mul(ty, e1x));
-    Wide v = mul(add(add(mul(dx, qx), mul(dy, qy)), mul(dz, qz)), invDet);
-    valid &= ~(cmp<_CMP_LT_OQ>(v, zero) | cmp<_CMP_GT_OQ>(add(u, v), one));
-    Wide t = mul(add(add(mul(e2x, qx), mul(e2y, qy)), mul(e2z, qz)), invDet);
-    valid &= cmp<_CMP_GE_OQ>(t, splat(r.mint)) & cmp<_CMP_LE_OQ>(t, splat(maxt));
-    return {t, u, v, valid, 0};
-}
-
-inline Lanes watertightLanes(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, LaneMask m, float maxt) {
-    const Wide ox = splat(r.o[r.kx]), oy = splat(r.o[r.ky]), oz = splat(r.o[r.kz]);
-    const Wide sx = splat(r.sx), sy = splat(r.sy), sz = splat(r.sz);
-    Wide az0 = sub(load(rows, n, r.kz, i, m), oz);
-    Wide bz0 = sub(load(rows, n, 3 + r.kz, i, m), oz);
-    Wide cz0 = sub(load(rows, n, 6 + r.kz, i, m), oz);
-    Wide ax = sub(sub(load(rows, n, r.kx, i, m), ox), mul(sx, az0));
-    Wide ay = sub(sub(load(rows, n, r.ky, i, m), oy), mul(sy, az0));
-    Wide bx = sub(sub(load(rows, n, 3 + r.kx, i, m), ox), mul(sx, bz0));
-    Wide by = sub(sub(load(rows, n, 3 + r.ky, i, m), oy), mul(sy, bz0));
-    Wide cx = sub(sub(load(rows, n, 6 + r.kx, i, m), ox), mul(sx, cz0));
-    Wide cy = sub(sub(load(rows, n, 6 + r.ky, i, m), oy), mul(sy, cz0));
-    Wide U = sub(mul(cx, by), mul(cy, bx));
-    Wide V = sub(mul(ax, cy), mul(ay, cx));
-    Wide W = sub(mul(bx, ay), mul(by, ax));
-    const Wide zero = splat(0.0f);
-    LaneMask redo = m & (cmp<_CMP_EQ_OQ>(U, zero) | cmp<_CMP_EQ_OQ>(V, zero) | cmp<_CMP_EQ_OQ>(W, zero));
-    LaneMask neg = cmp<_CMP_LT_OQ>(U, zero) | cmp<_CMP_LT_OQ>(V, zero) | cmp<_CMP_LT_OQ>(W, zero);
-    LaneMask pos = cmp<_CMP_GT_OQ>(U, zero) | cmp<_CMP_GT_OQ>(V, zero) | cmp<_CMP_GT_OQ>(W, zero);
-    LaneMask valid = m & ~redo & ~(neg & pos);
-    if (!valid) return {U, V, W, 0, redo};  // most steps: the ray passes beside every triangle
-    Wide det = add(add(U, V), W);
-    valid &= cmp<_CMP_NEQ_UQ>(det, zero);
-    Wide T = add(add(mul(U, mul(sz, az0)), mul(V, mul(sz, bz0))), mul(W, mul(sz, cz0)));
-    Wide invDet = div(splat(1.0f), det);
-    Wide t = mul(T, invDet);
-    valid &= cmp<_CMP_GE_OQ>(t, splat(r.mint)) & cmp<_CMP_LE_OQ>(t, splat(maxt));
-    return {t, mul(V, invDet), mul(W, invDet), valid, redo};
-}
-
-inline Lanes testLanes(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, unsigned m,
-                       float maxt) {
-    return kind == Intersector::MT ? mtLanes(r, rows, n, i, m, maxt) : watertightLanes(r, rows, n, i, m, maxt);
-}
-#endif
-
-#if NORI_TRIANGLE_AVX2
-/// Lanes of the 8-triangle step starting at triangle i (the tail step is partial).
-inline unsigned stepMask8(uint32_t n, uint32_t i) { return n - i >= 8 ? 0xFFu : (1u << (n - i)) - 1; }
-
-/// Closest hit over chunk k in two 8-lane steps; lexicographic minimum (t, prim) as the scalar loop.
-bool chunkIntersectAvx2(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
-                        Hit &best) {
-    bool found = false;
-    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += 8) {
-        Lanes l = testLanes(kind, ray, rows, n, i, stepMask8(n, i), best.t);
-        unsigned candidates = l.valid | l.redo;
-        if (!candidates) continue;
-        alignas(32) float ts[8], us[8], vs[8];
-        _mm256_store_ps(ts, l.t);
-        _mm256_store_ps(us, l.u);
-        _mm256_store_ps(vs, l.v);
-        for (; candidates; candidates &= candidates - 1) {
-            int j = __builtin_ctz(candidates);
-            uint32_t prim = primAt(rows, n, i + uint32_t(j));
-            float t = ts[j], u = us[j], v = vs[j];
-            // Lanes with an exactly zero edge function: the scalar kernel decides them.
-            if ((l.redo >> j) & 1u) {
-                if (!testOne(kind, ray, rows, n, i + uint32_t(j), best.t, t, u, v)) continue;
-            }
-            if (t < best.t || (t == best.t && prim < best.prim)) {
-                best = Hit{t, u, v, prim};
-                found = true;
-            }
-        }
-    }
-    return found;
-}
-
-/// The same values as chunkEntriesScalar(), eight chunk boxes per step.
-unsigned chunkEntriesAvx2(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, float tn[16]) {
+/// Any hit in the leaf with t in [ray.mint, maxt].
+template <int L>
+bool leafOccluded(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, float maxt) {
     const uint32_t nc = (n + 15) / 16;
-    const float *boxes = rows + size_t(10) * n;
-    unsigned mask = 0;
-    for (uint32_t k = 16 * g; k < std::min(nc, 16 * g + 16); k += 8) {
-        const unsigned m = stepMask8(nc, k);
-        __m256 t0 = _mm256_set1_ps(r.mint), t1 = _mm256_set1_ps(maxt);
-        for (int a = 0; a < 3; ++a) {
-            __m256 o = _mm256_set1_ps(r.o[a]);
-            __m256 nearPlane = loadLanes(boxes + size_t(3 * r.neg[a] + a) * nc + k, m);
-            __m256 farPlane = loadLanes(boxes + size_t(3 * (1 - r.neg[a]) + a) * nc + k, m);
-            __m256 tNear = mul(sub(nearPlane, o), _mm256_set1_ps(r.rcpNear[a]));
-            __m256 tFar = mul(sub(farPlane, o), _mm256_set1_ps(r.rcpFar[a]));
-            t0 = _mm256_max_ps(tNear, t0);  // second operand on NaN or equality: as the scalar code
-            t1 = _mm256_min_ps(tFar, t1);
-        }
-        _mm256_storeu_ps(tn + (k - 16 * g), t0);
-        mask |= (m & cmp<_CMP_LE_OQ>(t0, t1)) << (k - 16 * g);
-    }
-    return mask;
-}
-
-/// Any hit in chunk k with t in [mint, maxt].
-bool chunkOccludedAvx2(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
-                       float maxt) {
-    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += 8) {
-        Lanes l = testLanes(kind, ray, rows, n, i, stepMask8(n, i), maxt);
-        if (l.valid) return true;
-        for (unsigned redo = l.redo; redo; redo &= redo - 1) {
-            float t, u, v;
-            if (testOne(kind, ray, rows, n, i + uint32_t(__builtin_ctz(redo)), maxt, t, u, v)) return true;
+    for (uint32_t g = 0; 16 * g < nc; ++g) {
+        float tn[16];
+        unsigned mask = n <= 16 ? 1u : chunkEntries<L>(ray, rows, n, g, maxt, tn);
+        for (; mask; mask &= mask - 1) {
+            const uint32_t k = 16 * g + uint32_t(__builtin_ctz(mask));
+            for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L)
+                if (any(testStep<L>(kind, ray, rows, n, i, maxt).hit)) return true;
         }
     }
     return false;
 }
-#endif
 
-} // namespace
-
-#if NORI_TRIANGLE_AVX512
-namespace {
-/// Minimum over the lanes in \p mask (GCC 12's masked reduction trips -Wuninitialized).
-inline float reduceMin(__mmask16 mask, __m512 v) {
-    return _mm512_reduce_min_ps(_mm512_mask_blend_ps(mask, _mm512_set1_ps(Infinity), v));
-}
-
-/// SIMD closest hit over chunk k: one 16-lane step.
-bool chunkIntersectSimd(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k, Hit &best) {
-    const uint32_t i = 16 * k;
-    const float *prims = rows + size_t(9) * n;
-    __mmask16 m = n - i >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - i)) - 1);
-    Lanes l = testLanes(kind, ray, rows, n, i, m, best.t);
-    bool found = false;
-    // Rare watertight lanes with an exactly zero edge function: the scalar kernel
-    // (double-precision fallback) decides them one by one.
-    for (unsigned redo = l.redo; redo; redo &= redo - 1) {
-        uint32_t j = i + uint32_t(__builtin_ctz(redo));
-        float t, u, v;
-        uint32_t prim = primAt(rows, n, j);
-        if (testOne(kind, ray, rows, n, j, best.t, t, u, v) && (t < best.t || prim < best.prim)) {
-            best = Hit{t, u, v, prim};
-            found = true;
+/// Every triangle's own answer in chunk k, without the closest-hit reduction.
+template <int L>
+unsigned chunkDecisions(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
+                        float maxt, TriangleStore::ChunkAnswers &out) {
+    unsigned hits = 0;
+    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L) {
+        Step<L> s = testStep<L>(kind, ray, rows, n, i, maxt);
+        float t[L], u[L], v[L];
+        s.t.storeu(t);
+        s.u.storeu(u);
+        s.v.storeu(v);
+        for (int j = 0; j < L && i + uint32_t(j) < std::min(n, 16 * k + 16); ++j) {
+            const uint32_t slot = i + uint32_t(j) - 16 * k;
+            out.t[slot] = t[j], out.u[slot] = u[j], out.v[slot] = v[j];
         }
+        hits |= bits(s.hit) << (i - 16 * k);
     }
-    if (!l.valid) return found;
-    // Lexicographic minimum of (t, prim) over the hit lanes, as the scalar loop finds it.
-    float tmin = reduceMin(l.valid, l.t);
-    __mmask16 nearest = _mm512_mask_cmp_ps_mask(l.valid, l.t, _mm512_set1_ps(tmin), _CMP_EQ_OQ);
-    __m512i ids = _mm512_maskz_loadu_epi32(m, prims + i);
-    uint32_t prim = uint32_t(_mm512_reduce_min_epu32(_mm512_mask_blend_epi32(nearest, _mm512_set1_epi32(-1), ids)));
-    if (!(tmin < best.t || (tmin == best.t && prim < best.prim))) return found;
-    __mmask16 lane = _mm512_mask_cmp_epu32_mask(nearest, ids, _mm512_set1_epi32(int(prim)), _MM_CMPINT_EQ);
-    int j = __builtin_ctz(lane);
-    alignas(64) float us[16], vs[16];
-    _mm512_store_ps(us, l.u);
-    _mm512_store_ps(vs, l.v);
-    best = Hit{tmin, us[j], vs[j], prim};
-    return true;
+    return out.hits = hits;
 }
 
-/// The same values as chunkEntriesScalar(), sixteen chunk boxes at once.
-__mmask16 chunkEntriesSimd(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, __m512 &tn) {
-    const uint32_t nc = (n + 15) / 16;
-    const float *boxes = rows + size_t(10) * n + 16 * g;
-    __mmask16 m = nc - 16 * g >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (nc - 16 * g)) - 1);
-    __m512 t0 = _mm512_set1_ps(r.mint), t1 = _mm512_set1_ps(maxt);
-    for (int a = 0; a < 3; ++a) {
-        __m512 o = _mm512_set1_ps(r.o[a]);
-        __m512 nearPlane = _mm512_maskz_loadu_ps(m, boxes + size_t(3 * r.neg[a] + a) * nc);
-        __m512 farPlane = _mm512_maskz_loadu_ps(m, boxes + size_t(3 * (1 - r.neg[a]) + a) * nc);
-        __m512 tNear = _mm512_mul_ps(_mm512_sub_ps(nearPlane, o), _mm512_set1_ps(r.rcpNear[a]));
-        __m512 tFar = _mm512_mul_ps(_mm512_sub_ps(farPlane, o), _mm512_set1_ps(r.rcpFar[a]));
-        t0 = _mm512_max_ps(tNear, t0);  // second operand on NaN or equality: as the scalar code
-        t1 = _mm512_min_ps(tFar, t1);
-    }
-    tn = t0;
-    return _mm512_mask_cmp_ps_mask(m, t0, t1, _CMP_LE_OQ);
-}
-} // namespace
+/// Call \p f with std::integral_constant<int, L> for a lane count of this build.
+template <typename Fn>
+auto withLanes(int lanes, Fn &&f) {
+    switch (lanes) {
+#if NORI_LANES_AVX512
+    case 16: return f(std::integral_constant<int, 16>());
 #endif
+#if NORI_LANES_AVX2
+    case 8: return f(std::integral_constant<int, 8>());
+#endif
+    case 1: return f(std::integral_constant<int, 1>());
+    default: throw std::invalid_argument(fmt::format("TriangleStore: {} lanes are not compiled into this build", lanes));
+    }
+}
+
+} // namespace
+
+std::vector<int> TriangleStore::laneWidths() {
+    std::vector<int> widths;
+    for (int l : {16, 8, 1})
+        if (lanes::available(l)) widths.push_back(l);
+    return widths;
+}
 
 bool TriangleStore::intersect(const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const {
-    const float *rows = m_data.data() + offset;
-#if NORI_TRIANGLE_AVX512
-    if (n <= 16) return chunkIntersectSimd(m_kind, ray, rows, n, 0, best);
-    bool found = false;
-    const uint32_t nc = (n + 15) / 16;
-    for (uint32_t g = 0; 16 * g < nc; ++g) {
-        __m512 tn;
-        __mmask16 mask = chunkEntriesSimd(ray, rows, n, g, best.t, tn);
-        while (mask) {  // nearest entered chunk first (ties: lower index)
-            float tmin = reduceMin(mask, tn);
-            if (tmin > best.t) break;
-            __mmask16 at = _mm512_mask_cmp_ps_mask(mask, tn, _mm512_set1_ps(tmin), _CMP_EQ_OQ);
-            int k = __builtin_ctz(at);
-            mask &= __mmask16(~(1u << k));
-            found |= chunkIntersectSimd(m_kind, ray, rows, n, 16 * g + uint32_t(k), best);
-        }
-    }
-    return found;
-#elif NORI_TRIANGLE_AVX2
-    return intersectChunks(m_kind, ray, rows, n, best, chunkEntriesAvx2, chunkIntersectAvx2);
-#else
-    return intersectScalar(m_kind, ray, rows, n, best);
-#endif
+    return leafIntersect<kMaxLanes>(m_kind, ray, m_data.data() + offset, n, best);
 }
 
 bool TriangleStore::occluded(const TriangleRay &ray, size_t offset, uint32_t n, float maxt) const {
-    const float *rows = m_data.data() + offset;
-    const uint32_t nc = (n + 15) / 16;
-    for (uint32_t g = 0; 16 * g < nc; ++g) {
-#if NORI_TRIANGLE_AVX512
-        __m512 tn;
-        unsigned mask = n <= 16 ? 1u : chunkEntriesSimd(ray, rows, n, g, maxt, tn);
-#elif NORI_TRIANGLE_AVX2
-        float tn[16];
-        unsigned mask = n <= 16 ? 1u : chunkEntriesAvx2(ray, rows, n, g, maxt, tn);
-#else
-        float tn[16];
-        unsigned mask = n <= 16 ? 1u : chunkEntriesScalar(ray, rows, n, g, maxt, tn);
-#endif
-        for (; mask; mask &= mask - 1) {
-            uint32_t k = 16 * g + uint32_t(__builtin_ctz(mask));
-#if NORI_TRIANGLE_AVX512
-            __mmask16 m = n - 16 * k >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << (n - 16 * k)) - 1);
-            Lanes l = testLanes(m_kind, ray, rows, n, 16 * k, m, maxt);
-            if (l.valid) return true;
-            for (unsigned redo = l.redo; redo; redo &= redo - 1) {
-                float t, u, v;
-                if (testOne(m_kind, ray, rows, n, 16 * k + uint32_t(__builtin_ctz(redo)), maxt, t, u, v)) return true;
-            }
-#elif NORI_TRIANGLE_AVX2
-            if (chunkOccludedAvx2(m_kind, ray, rows, n, k, maxt)) return true;
-#else
-            for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i) {
-                float t, u, v;
-                if (testOne(m_kind, ray, rows, n, i, maxt, t, u, v)) return true;
-            }
-#endif
-        }
-    }
-    return false;
+    return leafOccluded<kMaxLanes>(m_kind, ray, m_data.data() + offset, n, maxt);
 }
 
 bool TriangleStore::intersectReference(const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const {
-    return intersectScalar(m_kind, ray, m_data.data() + offset, n, best);
+    return leafIntersect<1>(m_kind, ray, m_data.data() + offset, n, best);
+}
+
+bool TriangleStore::intersectLanes(int lanes, const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const {
+    return withLanes(lanes, [&](auto l) { return leafIntersect<l()>(m_kind, ray, m_data.data() + offset, n, best); });
+}
+
+bool TriangleStore::occludedLanes(int lanes, const TriangleRay &ray, size_t offset, uint32_t n, float maxt) const {
+    return withLanes(lanes, [&](auto l) { return leafOccluded<l()>(m_kind, ray, m_data.data() + offset, n, maxt); });
+}
+
+unsigned TriangleStore::chunkAnswers(int lanes, const TriangleRay &ray, size_t offset, uint32_t n, uint32_t k,
+                                     float maxt, ChunkAnswers &out) const {
+    return withLanes(lanes, [&](auto l) { return chunkDecisions<l()>(m_kind, ray, m_data.data() + offset, n, k, maxt, out); });
 }
 
 } // namespace nori

@@ -2,11 +2,12 @@
 /// \brief Ray/triangle intersectors (Möller–Trumbore, watertight) and the precomputed
 /// triangle store that the octree leaves and the brute-force accel both test.
 ///
-/// All arithmetic lives in src/triangle.cpp, compiled without floating-point contraction: the
-/// watertight test needs `a*b - c*d` evaluated without a fused multiply-add (an FMA rounds the
-/// two products differently, so the edge functions of two triangles sharing an edge would no
-/// longer be exact negatives), and every accelerator must get bit-identical results from the
-/// same store (so that ties and near-ties resolve the same way in brute force and octree).
+/// All arithmetic lives in src/accel/triangle.cpp, written once over lanes::VFloat<L> (16, 8 and
+/// 1 lanes) and compiled with -ffp-contract=off: the watertight test needs `a*b - c*d` evaluated
+/// without a fused multiply-add (an FMA rounds the two products differently, so the edge
+/// functions of two triangles sharing an edge would no longer be exact negatives), and every
+/// width and every accelerator must get bit-identical results from the same store (so that ties
+/// and near-ties resolve the same way in brute force and octree, on every machine).
 #pragma once
 
 #include <nori/accel.h>
@@ -64,10 +65,25 @@ public:
     /// \brief Closest hit among the leaf's triangles with t in [ray.mint, best.t]; a hit at
     /// exactly best.t wins only with a lower triangle id (deterministic ties). Updates \p best.
     bool intersect(const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const;
-    /// \brief The scalar kernels on the same leaf (for tests: intersect() must match it bit for bit).
-    bool intersectReference(const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const;
     /// \brief Is any triangle of the leaf hit with t in [ray.mint, maxt]?
     bool occluded(const TriangleRay &ray, size_t offset, uint32_t n, float maxt) const;
+
+    // The same kernels at a chosen lane count (for tests: every width must agree bit for bit).
+    /// \brief Lane counts compiled into this build, widest first: 16 (AVX-512), 8 (AVX2), 1.
+    static std::vector<int> laneWidths();
+    /// \brief intersect() with one lane (the reference all widths must match bit for bit).
+    bool intersectReference(const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const;
+    /// \brief intersect() / occluded() with \p lanes lanes (one of laneWidths(), else throws).
+    bool intersectLanes(int lanes, const TriangleRay &ray, size_t offset, uint32_t n, Hit &best) const;
+    bool occludedLanes(int lanes, const TriangleRay &ray, size_t offset, uint32_t n, float maxt) const;
+    /// \brief Each triangle's own decision in chunk k (triangles 16k .. 16k + 15) of a leaf.
+    struct ChunkAnswers {
+        unsigned hits;  ///< bit i: triangle 16k + i is hit with t in [ray.mint, maxt]
+        float t[16], u[16], v[16];  ///< the kernel's values (meaningful where hit)
+    };
+    /// \brief Fill \p out for chunk \p k with \p lanes lanes; returns out.hits.
+    unsigned chunkAnswers(int lanes, const TriangleRay &ray, size_t offset, uint32_t n, uint32_t k, float maxt,
+                          ChunkAnswers &out) const;
 
     Intersector kind() const { return m_kind; }
     /// \brief Bytes owned.
@@ -77,13 +93,5 @@ private:
     Intersector m_kind = Intersector::Watertight;
     std::vector<float> m_data;  ///< leaf blocks (ids stored as their bit patterns)
 };
-
-/// \brief Scalar Möller–Trumbore on precomputed (v0, e1, e2); the reference for the SIMD kernel
-/// (same operations in the same order, so both give bit-identical results).
-bool intersectMT(const TriangleRay &ray, const float v0[3], const float e1[3], const float e2[3], float maxt,
-                 float &t, float &u, float &v);
-/// \brief Scalar watertight test on the three corners; reference for the SIMD kernel.
-bool intersectWatertight(const TriangleRay &ray, const float p0[3], const float p1[3], const float p2[3],
-                         float maxt, float &t, float &u, float &v);
 
 } // namespace nori

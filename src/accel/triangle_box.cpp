@@ -1,4 +1,5 @@
-// Separating-axis triangle/box test after Akenine-Möller 2001 (own implementation).
+/// \file triangle_box.cpp
+/// \brief Separating-axis triangle/box test after Akenine-Möller 2001 (own implementation).
 #include "triangle_box.h"
 #include <cmath>
 

@@ -1,39 +1,89 @@
 /// \file main.cpp
 /// \brief The `nori` command: load a scene, build its accelerator, render, write EXR + PNG.
+#include "interrupts.h"
 #include "options.h"
 #include "stats_json.h"
 #include <nori/atomic_file.h>
+#include <nori/output_set.h>
+#include <nori/parser.h>
 #include <nori/renderer.h>
 #include <nori/resolver.h>
 #include <nori/scene.h>
+#include <nori/statistical_test.h>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <tbb/global_control.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace nori;
 
 namespace {
 
-std::atomic<bool> g_cancel{false};
-
-extern "C" void onInterrupt(int) {
-    // Second Ctrl-C: the user really wants out.
-    if (g_cancel.exchange(true)) std::_Exit(130);
+/// An error as one short line, whatever it echoes (file names from the scene, the scene's own
+/// name): control characters become '?', and a very long message keeps its start (FILE:LINE)
+/// and its end.
+std::string messageLine(const std::string &message) {
+    constexpr size_t Keep = 160;
+    if (message.size() <= 2 * Keep) return shown(message, message.size());
+    return shown(message, Keep) + shown(std::string_view(message).substr(message.size() - Keep), Keep);
 }
 
-/// Fail before the (possibly long) render if the output folder cannot take the images.
-void checkOutputFolder(const std::string &base) {
-    namespace fs = std::filesystem;
-    fs::path folder = fs::path(base).parent_path();
-    if (folder.empty()) folder = ".";
-    std::error_code ec;
-    if (!fs::is_directory(folder, ec)) throw NoriException("{}: output folder does not exist", folder.string());
-    if (access(folder.c_str(), W_OK) != 0)
-        throw NoriException("{}: output folder is not writable: {}", folder.string(), std::strerror(errno));
+/// Every file this run may write; all are checked before the scene is loaded.
+std::vector<std::string> outputPaths(const CommandLine &cl) {
+    std::vector<std::string> paths = {cl.outputBase + ".exr", cl.outputBase + ".png", cl.outputBase + "-partial.exr"};
+    if (!cl.statsJsonPath.empty()) paths.push_back(cl.statsJsonPath);
+    return paths;
+}
+
+/// Test hook: NORI_TEST_SIGNALS_WHILE_WRITING=INT[,TERM...] raises those signals after the first
+/// output was written to its temporary file, so that tests need no timing luck.
+void testHookSignalsWhileWriting() {
+    const char *list = std::getenv("NORI_TEST_SIGNALS_WHILE_WRITING");
+    if (!list) return;
+    std::string names = list;
+    for (size_t start = 0; start < names.size();) {
+        size_t comma = std::min(names.find(',', start), names.size());
+        std::string name = names.substr(start, comma - start);
+        std::raise(name == "TERM" ? SIGTERM : name == "HUP" ? SIGHUP : SIGINT);
+        start = comma + 1;
+    }
+}
+
+/// Test hook: NORI_TEST_PAUSE_AFTER_RENAME=FILE creates FILE after the first rename (the output
+/// folders still locked) and waits up to 30 s until the test removes it.
+void testHookPauseAfterRename(const std::string &) {
+    static bool paused = false;
+    const char *marker = std::getenv("NORI_TEST_PAUSE_AFTER_RENAME");
+    if (!marker || paused) return;
+    paused = true;
+    AtomicFile::write(marker, "paused\n");
+    for (int i = 0; i < 3000 && ::access(marker, F_OK) == 0; ++i) ::usleep(10000);
+}
+
+/// Rename the outputs; a signal now only records itself, so that no mixed set is left.
+void commit(OutputSet &outputs) {
+    Interrupts::setCommitting(true);
+    try {
+        outputs.commit(testHookPauseAfterRename);
+    } catch (...) {
+        Interrupts::setCommitting(false);
+        throw;
+    }
+    Interrupts::setCommitting(false);
+}
+
+/// Run the statistical tests of a test file; the report goes to stdout.
+bool runTests(const CommandLine &cl) {
+    std::unique_ptr<NoriObject> root = loadFromXML(cl.scenePath, cl.overrides);
+    const auto *test = dynamic_cast<const StatisticalTest *>(root.get());
+    if (!test) throw NoriException("{}: <test> of an unknown kind", root->location());
+    return test->run(stdout);
 }
 
 int run(const CommandLine &cl) {
@@ -41,15 +91,15 @@ int run(const CommandLine &cl) {
     int threads = cl.threads > 0 ? cl.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     // Bounds every TBB algorithm: the accel build and the renderer alike.
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    checkOutputFolder(cl.outputBase);
-    // A folder in the way of an image would only fail after the render, possibly after the
-    // other image was already replaced: refuse before anything is written.
-    for (const char *ext : {".exr", ".png"}) {
-        std::error_code ec;
-        if (std::filesystem::is_directory(cl.outputBase + ext, ec))
-            throw NoriException("{}{}: is a folder, cannot write the image there", cl.outputBase, ext);
-    }
-    if (!cl.statsJsonPath.empty()) checkOutputFolder(cl.statsJsonPath);
+    // The scene first: a missing scene is the mistake to report, not its (missing) folder.
+    struct stat sceneStat {};
+    if (::stat(cl.scenePath.c_str(), &sceneStat) != 0)
+        throw NoriException("{}: cannot open: {}", cl.scenePath, std::strerror(errno));
+    // A file whose root is <test> (Nori's ttest / chi2test) runs its tests and writes no image.
+    if (rootElementName(cl.scenePath) == "test") return runTests(cl) ? 0 : 1;
+    // Every output before the (possibly long) load and render: nothing is lost to a bad name.
+    OutputSet::check(outputPaths(cl));
+    Interrupts::install();
 
     auto start = std::chrono::steady_clock::now();
     std::unique_ptr<Scene> scene = loadScene(cl.scenePath, cl.overrides);
@@ -64,13 +114,11 @@ int run(const CommandLine &cl) {
             std::fprintf(stderr, "  %-20s %s\n", stat.name.c_str(),
                          (stat.integral ? fmt::format("{}", (long long)stat.value) : fmt::format("{:.3f}", stat.value)).c_str());
 
-    std::signal(SIGINT, onInterrupt);
     RenderSettings settings;
     settings.threads = threads;
     settings.progress = !cl.quiet;
-    settings.cancel = &g_cancel;
+    settings.cancel = &Interrupts::cancelled();
     RenderResult result = BlockRenderer(*scene).render(settings);
-    std::signal(SIGINT, SIG_DFL);
 
     if (!cl.quiet) {
         std::fprintf(stderr, "Rendered %dx%d at %d spp in %.1f ms: %llu rays, %.2f Mrays/s\n",
@@ -80,18 +128,28 @@ int run(const CommandLine &cl) {
             std::fprintf(stderr, "Warning: %llu samples were NaN or infinite and left out\n",
                          (unsigned long long)result.droppedSamples);
     }
+    // From here on a signal no longer loses the render: the outputs are written completely.
+    OutputSet outputs;
     if (!result.complete) {
         std::string partial = cl.outputBase + "-partial.exr";
-        result.image.saveEXR(partial);
+        outputs.add(partial, result.image.encodeEXR(partial));
+        commit(outputs);
         std::fprintf(stderr, "Interrupted after %d of %d blocks; partial image saved as %s\n", result.blocksRendered,
                      result.blockCount, partial.c_str());
-        return 130;
+        return Interrupts::exitStatus();
     }
-    result.image.saveEXR(cl.outputBase + ".exr");
-    result.image.savePNG(cl.outputBase + ".png");
+    const std::string exr = cl.outputBase + ".exr", png = cl.outputBase + ".png";
+    outputs.add(exr, result.image.encodeEXR(exr));
+    testHookSignalsWhileWriting();
+    outputs.add(png, result.image.encodePNG(png));
     if (!cl.statsJsonPath.empty())
-        AtomicFile::write(cl.statsJsonPath, statsJson(RunFigures{cl.scenePath, threads, loadMs}, *scene, result));
-    if (!cl.quiet) std::fprintf(stderr, "Wrote %s.exr and %s.png\n", cl.outputBase.c_str(), cl.outputBase.c_str());
+        outputs.add(cl.statsJsonPath, statsJson(RunFigures{cl.scenePath, threads, loadMs}, *scene, result));
+    commit(outputs);
+    if (!cl.quiet) std::fprintf(stderr, "Wrote %s and %s\n", exr.c_str(), png.c_str());
+    if (Interrupts::signal() != 0) {
+        std::fprintf(stderr, "Interrupted while writing; the outputs were written completely first\n");
+        return Interrupts::exitStatus();
+    }
     return 0;
 }
 
@@ -105,11 +163,11 @@ int main(int argc, char **argv) {
     try {
         return run(cl);
     } catch (const NoriException &e) {
-        std::fprintf(stderr, "nori: %s\n", e.what());
+        std::fprintf(stderr, "nori: %s\n", messageLine(e.what()).c_str());
     } catch (const std::bad_alloc &) {
         std::fprintf(stderr, "nori: out of memory\n");
     } catch (const std::exception &e) {
-        std::fprintf(stderr, "nori: internal error: %s\n", e.what());
+        std::fprintf(stderr, "nori: internal error: %s\n", messageLine(e.what()).c_str());
     }
     return 1;
 }

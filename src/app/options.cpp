@@ -110,17 +110,28 @@ void CommandLine::finish(const CliApp &cli) {
                                              overrides.accelType));
     overrides.sampleCount = m_spp;
 
-    // Output name: strip a known image suffix; both images are always written.
+    // Output name: strip a known image suffix; both images are always written. A name that
+    // is given must name a file: '' (an unset variable), "dir/", "/" or ".exr" would write
+    // hidden or misplaced files, or fall back to the default and overwrite earlier images.
     namespace fs = std::filesystem;
-    if (outputBase.empty()) {
+    if (app.count("--output") == 0) {
         fs::path scene(scenePath);
         outputBase = (scene.parent_path() / scene.stem()).string();
-    } else {
-        fs::path out(outputBase);
-        std::string ext = out.extension().string();
-        if (ext == ".exr" || ext == ".png") outputBase = (out.parent_path() / out.stem()).string();
-        else if (!ext.empty()) throw UsageError(fmt::format("--output: '{}' must end in .exr or .png", outputBase));
+        return;
     }
+    const std::string given = outputBase;
+    if (given.empty()) throw UsageError("--output: the name is empty");
+    if (given.back() == '/') throw UsageError(fmt::format("--output: '{}' is a folder name, not a file name", given));
+    std::string name = fs::path(given).filename().string();
+    for (const char *ext : {".exr", ".png"})
+        if (name.size() >= 4 && name.compare(name.size() - 4, 4, ext) == 0) {
+            name.resize(name.size() - 4);
+            outputBase.resize(outputBase.size() - 4);
+        }
+    if (name.empty() || name == "." || name == "..")
+        throw UsageError(fmt::format("--output: '{}' has no file name before the suffix", given));
+    if (name.find('.') != std::string::npos && fs::path(name).has_extension())
+        throw UsageError(fmt::format("--output: '{}' must end in .exr or .png, or have no suffix", given));
 }
 
 } // namespace nori

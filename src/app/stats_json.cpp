@@ -19,6 +19,10 @@ std::string statsJson(const RunFigures &run, const Scene &scene, const RenderRes
     json["load_ms"] = run.loadMs;
     json["render_ms"] = result.milliseconds;
     json["rays"] = result.rays;
+    // Rays by kind: rays = rays_closest_hit + rays_shadow; camera rays are among the closest hits.
+    json["rays_camera"] = result.cameraRays;
+    json["rays_closest_hit"] = result.closestHitRays;
+    json["rays_shadow"] = result.shadowRays;
     json["mrays_per_s"] = result.milliseconds > 0.0 ? result.rays / (result.milliseconds * 1e3) : 0.0;
     json["complete"] = result.complete;
     // The accelerator's own statistics (build_ms, triangles, node counts, bytes, ...).

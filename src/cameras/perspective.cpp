@@ -1,4 +1,5 @@
-/// Pinhole perspective camera (Nori's `perspective`).
+/// \file perspective.cpp
+/// \brief Pinhole perspective camera (Nori's `perspective`).
 #include <nori/camera.h>
 #include <nori/rfilter.h>
 

@@ -1,3 +1,5 @@
+/// \file object.cpp
+/// \brief Base class of every scene object, and the registry that creates them by type name (implementation).
 #include <nori/object.h>
 #include <algorithm>
 #include <fmt/ranges.h>
@@ -45,7 +47,7 @@ std::unique_ptr<NoriObject> NoriObjectFactory::createInstance(NoriObject::EClass
     if (it == registry().end()) {
         std::vector<std::string> known = registeredNames(type);
         throw NoriException("{}: unknown {} type '{}' (known: {})", props.location(), NoriObject::classTypeName(type),
-                            name, known.empty() ? std::string("none") : fmt::format("{}", fmt::join(known, ", ")));
+                            shown(name), known.empty() ? std::string("none") : fmt::format("{}", fmt::join(known, ", ")));
     }
     std::unique_ptr<NoriObject> object = it->second(props);
     object->setLocation(props.location());

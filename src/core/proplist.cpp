@@ -1,3 +1,5 @@
+/// \file proplist.cpp
+/// \brief Typed name/value properties of a scene object, remembering where each was declared (implementation).
 #include <nori/proplist.h>
 #include <algorithm>
 
@@ -10,7 +12,7 @@ const char *PropertyList::kindName(Kind kind) {
 
 void PropertyList::set(const std::string &name, Kind kind, Value value, const std::string &where) {
     if (m_properties.count(name))
-        throw NoriException("{}: property '{}' is specified twice", where.empty() ? m_location : where, name);
+        throw NoriException("{}: property '{}' is specified twice", where.empty() ? m_location : where, shown(name));
     m_properties[name] = Property{kind, std::move(value), where.empty() ? m_location : where, m_nextOrder++};
 }
 
@@ -19,7 +21,7 @@ const PropertyList::Property *PropertyList::find(const std::string &name, Kind k
     if (it == m_properties.end()) return nullptr;
     const Property &p = it->second;
     if (p.kind != kind)
-        throw NoriException("{}: property '{}' has the wrong type: expected {}, found {}", p.where, name,
+        throw NoriException("{}: property '{}' has the wrong type: expected {}, found {}", p.where, shown(name),
                             kindName(kind), kindName(p.kind));
     p.used = true;
     return &p;

@@ -69,12 +69,16 @@ Vector3f interpolationError(const Point3f &p0, const Point3f &p1, const Point3f 
 
 float spawnOffset(const Point3f &p0, const Point3f &p1, const Point3f &p2, const Point3f &p, const Vector3f &pError,
                   const Normal3f &ng) {
+    return spawnOffset(p0, p1, p2, p, pError, ng, (p1 - p0).cross(p2 - p0).norm());
+}
+
+float spawnOffset(const Point3f &p0, const Point3f &p1, const Point3f &p2, const Point3f &p, const Vector3f &pError,
+                  const Normal3f &ng, float twiceArea) {
     // Section 1: the distance of p from the plane.
     float interpolation = ng.cwiseAbs().dot(pError);
     // Section 2: R from p plus what separates p from the origin o (absorbed in the factor 2 margin).
     float R = std::max({(p0 - p).cwiseAbs().maxCoeff(), (p1 - p).cwiseAbs().maxCoeff(), (p2 - p).cwiseAbs().maxCoeff()}) +
               pError.maxCoeff();
-    float twiceArea = (p1 - p0).cross(p2 - p0).norm();
     // Section 3: R^2 / (2A), capped for slivers (and degenerate triangles, which no kernel reports).
     const float maxShape = 16.0f;
     float shape = twiceArea > 0.0f ? std::min(R * R / twiceArea, maxShape) : maxShape;

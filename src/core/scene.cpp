@@ -7,7 +7,7 @@ namespace nori {
 namespace {
 // Per-thread counter: a block is rendered by one thread, so the renderer can attribute
 // rays to blocks without contended atomics.
-thread_local uint64_t t_rayCount = 0;
+thread_local Scene::RayCounts t_rayCounts;
 
 template <typename T> std::unique_ptr<T> downcast(std::unique_ptr<NoriObject> object) {
     return std::unique_ptr<T>(static_cast<T *>(object.release()));
@@ -17,15 +17,15 @@ template <typename T> std::unique_ptr<T> downcast(std::unique_ptr<NoriObject> ob
 Scene::Scene(const PropertyList &) {}
 Scene::~Scene() = default;
 
-uint64_t Scene::threadRayCount() { return t_rayCount; }
+Scene::RayCounts Scene::threadRayCounts() { return t_rayCounts; }
 
 bool Scene::rayIntersect(const Ray3f &ray, Intersection &its) const {
-    ++t_rayCount;
+    ++t_rayCounts.closestHit;
     return m_accel->rayIntersect(ray, its, false);
 }
 
 bool Scene::rayIntersect(const Ray3f &ray) const {
-    ++t_rayCount;
+    ++t_rayCounts.shadow;
     return m_accel->occluded(ray);
 }
 

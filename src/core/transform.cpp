@@ -1,14 +1,34 @@
+/// \file transform.cpp
+/// \brief Homogeneous 4x4 transformation with its inverse (implementation).
 #include <nori/transform.h>
 #include <Eigen/LU>
+#include <cmath>
 #include <sstream>
 
 namespace nori {
 
+bool Transform::isWellConditioned(const Matrix4f &matrix) {
+    if (!matrix.allFinite()) return false;
+    const Eigen::Matrix4d m = matrix.cast<double>();
+    const bool affine = m.row(3) == Eigen::RowVector4d(0, 0, 0, 1);
+    // |det| against Hadamard's bound (the product of the column lengths): 1 for orthogonal
+    // columns, 0 for dependent ones, whatever the scale or the translation.
+    auto relativeDet = [](const auto &a) {
+        double bound = 1.0;
+        for (int c = 0; c < a.cols(); ++c) bound *= a.col(c).norm();
+        return bound > 0.0 && std::isfinite(bound) ? std::abs(a.determinant()) / bound : 0.0;
+    };
+    const double ratio = affine ? relativeDet(m.topLeftCorner<3, 3>()) : relativeDet(m);
+    return ratio > 1e-7;  // float data: columns independent beyond float rounding
+}
+
+bool Transform::isInvertible() const { return isWellConditioned(m_matrix) && m_inverse.allFinite(); }
+
 Transform::Transform(const Matrix4f &matrix) : m_matrix(matrix) {
+    if (!isWellConditioned(matrix)) throw NoriException("transform matrix is singular or not finite");
     Eigen::FullPivLU<Eigen::Matrix4d> lu(matrix.cast<double>());
-    if (!matrix.allFinite() || !lu.isInvertible())
-        throw NoriException("transform matrix is singular or not finite");
     m_inverse = lu.inverse().cast<float>();
+    if (!m_inverse.allFinite()) throw NoriException("transform matrix is singular or not finite");
 }
 
 Transform Transform::translate(const Vector3f &delta) {

@@ -1,4 +1,5 @@
-/// Ambient occlusion with cosine-weighted shadow rays (Nori's `ao`).
+/// \file ao.cpp
+/// \brief Ambient occlusion with cosine-weighted shadow rays (Nori's `ao`).
 #include <nori/sampler.h>
 #include <nori/scene.h>
 #include <nori/warp.h>

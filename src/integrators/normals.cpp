@@ -1,4 +1,5 @@
-/// Shows the absolute shading normal as a colour; black where the ray escapes.
+/// \file normals.cpp
+/// \brief Shows the absolute shading normal as a colour; black where the ray escapes.
 #include <nori/scene.h>
 
 namespace nori {

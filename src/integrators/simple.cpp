@@ -1,4 +1,5 @@
-/// Direct light from one point light with a shadow ray (Nori's `simple`).
+/// \file simple.cpp
+/// \brief Direct light from one point light with a shadow ray (Nori's `simple`).
 #include <nori/scene.h>
 
 namespace nori {

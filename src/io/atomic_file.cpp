@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <climits>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
@@ -15,7 +16,28 @@ namespace nori {
 namespace {
 /// Distinguishes the temporary files of concurrent writes to one path within one process.
 std::atomic<unsigned> g_temporaryCounter{0};
+
+/// The temporary files that exist now, in fixed storage that a signal handler can read.
+constexpr int SlotCount = 16;
+char g_slotPath[SlotCount][PATH_MAX];
+std::atomic<bool> g_slotUsed[SlotCount];
+
+int registerTemporary(const std::string &path) {
+    if (path.size() >= PATH_MAX) return -1;  // open() has failed for such a name already
+    for (int i = 0; i < SlotCount; ++i) {
+        if (g_slotUsed[i].load()) continue;
+        std::memcpy(g_slotPath[i], path.c_str(), path.size() + 1);
+        bool expected = false;
+        if (g_slotUsed[i].compare_exchange_strong(expected, true)) return i;
+    }
+    return -1;  // more than SlotCount at once: only the destructor cleans those up
+}
 } // namespace
+
+void AtomicFile::removeTemporariesNow() noexcept {
+    for (int i = 0; i < SlotCount; ++i)
+        if (g_slotUsed[i].load()) ::unlink(g_slotPath[i]);
+}
 
 AtomicFile::AtomicFile(std::string path) : m_path(std::move(path)) {
     m_temporary = fmt::format("{}.tmp-{}-{}", m_path, long(::getpid()), g_temporaryCounter.fetch_add(1));
@@ -25,12 +47,14 @@ AtomicFile::AtomicFile(std::string path) : m_path(std::move(path)) {
         m_done = true;  // nothing was created
         throw NoriException("{}: cannot write: cannot create '{}': {}", m_path, m_temporary, std::strerror(errno));
     }
+    m_slot = registerTemporary(m_temporary);
 }
 
 AtomicFile::AtomicFile(AtomicFile &&other) noexcept
     : m_path(std::move(other.m_path)), m_temporary(std::move(other.m_temporary)), m_fd(other.m_fd),
-      m_done(other.m_done) {
+      m_slot(other.m_slot), m_done(other.m_done) {
     other.m_fd = -1;
+    other.m_slot = -1;
     other.m_done = true;
 }
 
@@ -41,6 +65,12 @@ void AtomicFile::discard() noexcept {
     m_fd = -1;
     if (!m_done) ::unlink(m_temporary.c_str());
     m_done = true;
+    release();
+}
+
+void AtomicFile::release() noexcept {
+    if (m_slot >= 0) g_slotUsed[m_slot].store(false);
+    m_slot = -1;
 }
 
 void AtomicFile::fail(const std::string &what, int error) {
@@ -77,6 +107,7 @@ void AtomicFile::commit() {
     finish();
     if (::rename(m_temporary.c_str(), m_path.c_str()) != 0) fail("cannot rename", errno);
     m_done = true;
+    release();
 }
 
 void AtomicFile::write(const std::string &path, std::string_view bytes) {

@@ -1,6 +1,7 @@
 /// \file objloader.cpp
 /// \brief File access for the OBJ loader: read the whole file at once and, when it starts
 /// with the gzip magic bytes, inflate it in memory with zlib before parsing.
+#include "input_file.h"
 #include <nori/objloader.h>
 #include <algorithm>
 #include <cerrno>
@@ -14,42 +15,8 @@
 namespace nori {
 namespace {
 
-/// Closes a file descriptor on every exit path.
-struct FdGuard {
-    int fd;
-    ~FdGuard() {
-        if (fd >= 0) ::close(fd);
-    }
-};
-
-/// The whole file in one buffer (regular files: a single allocation of the right size).
-std::string readWholeFile(const std::string &path) {
-    FdGuard f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
-    if (f.fd < 0) throw NoriException("{}: cannot open: {}", path, std::strerror(errno));
-    struct stat st {};
-    if (::fstat(f.fd, &st) != 0) throw NoriException("{}: cannot open: {}", path, std::strerror(errno));
-    if (S_ISDIR(st.st_mode)) throw NoriException("{}: cannot open: {}", path, std::strerror(EISDIR));
-    // A device such as /dev/zero or /dev/urandom never ends: reading it would exhaust memory.
-    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode))
-        throw NoriException("{}: cannot open: is a device, not a mesh file", path);
-
-    std::string buf;
-    // Regular files: read exactly their size (+1 to notice growth); pipes etc.: grow as needed.
-    buf.resize(S_ISREG(st.st_mode) ? size_t(st.st_size) + 1 : size_t(1) << 16);
-    size_t used = 0;
-    for (;;) {
-        if (used == buf.size()) buf.resize(buf.size() * 2);
-        ssize_t got = ::read(f.fd, &buf[used], std::min<size_t>(buf.size() - used, size_t(1) << 30));
-        if (got < 0) {
-            if (errno == EINTR) continue;
-            throw NoriException("{}: cannot read: {}", path, std::strerror(errno));
-        }
-        if (got == 0) break;
-        used += size_t(got);
-    }
-    buf.resize(used);
-    return buf;
-}
+/// OBJ text (plain, or after decompression) beyond this is refused: ~60 million triangles.
+constexpr size_t MaxObjText = size_t(4) << 30;
 
 bool isGzip(const std::string &data) {
     return data.size() >= 2 && (unsigned char) data[0] == 0x1f && (unsigned char) data[1] == 0x8b;
@@ -62,17 +29,12 @@ bool isGzip(const std::string &data) {
 
 /// Inflate a complete .gz file (possibly several concatenated members, like `gzip -dc`).
 std::string gunzip(const std::string &in, const std::string &path) {
-    // The gzip trailer stores the uncompressed size mod 2^32: a good first allocation. It is
-    // only a claim of the file, though: deflate expands at most ~1032:1, so a larger claim
-    // (a corrupt or hostile trailer) must not reserve gigabytes for a few bytes of input.
-    size_t hint = in.size() * 4;
-    if (in.size() >= 18) {
-        const unsigned char *t = reinterpret_cast<const unsigned char *>(in.data() + in.size() - 4);
-        hint = size_t(t[0]) | size_t(t[1]) << 8 | size_t(t[2]) << 16 | size_t(t[3]) << 24;
-    }
-    hint = std::min(hint, in.size() * 1032 + 1024);
+    // The gzip trailer's size claim is not trusted (a truncated or hostile file can claim 4 GB):
+    // the buffer grows as data arrives, up to what the file can hold. Deflate expands at most
+    // ~1032:1 (RFC 1951: a 258-byte match per ~2 bits), for each member as for all of them.
+    const size_t limit = std::min(in.size() * 1032 + 1024, MaxObjText);
     std::string out;
-    out.resize(std::max<size_t>(hint, 1 << 16) + 1);
+    out.resize(std::min(limit, std::max<size_t>(in.size() * 4, size_t(1) << 16)));
 
     z_stream zs{};
     if (inflateInit2(&zs, 15 + 16) != Z_OK) throw NoriException("{}: cannot initialise zlib", path);
@@ -85,7 +47,16 @@ std::string gunzip(const std::string &in, const std::string &path) {
     size_t left = in.size(), produced = 0;
     const size_t chunk = size_t(1) << 30; // z_stream counters are 32-bit
     for (;;) {
-        if (produced == out.size()) out.resize(out.size() * 2);
+        if (produced == out.size()) {
+            if (out.size() >= limit)
+                throw NoriException("{}: the mesh decompresses to more than {} MiB (the limit for {} bytes of gzip data)",
+                                    path, limit >> 20, in.size());
+            try {
+                out.resize(std::min(limit, out.size() * 2));
+            } catch (const std::bad_alloc &) {
+                throw NoriException("{}: out of memory while decompressing ({} MiB so far)", path, produced >> 20);
+            }
+        }
         zs.next_in = const_cast<unsigned char *>(next);
         zs.avail_in = uInt(std::min(left, chunk));
         zs.next_out = reinterpret_cast<unsigned char *>(&out[produced]);
@@ -116,9 +87,17 @@ std::string gunzip(const std::string &in, const std::string &path) {
 } // namespace
 
 MeshData loadObjFile(const std::string &path) {
-    std::string data = readWholeFile(path);
+    std::string data = readInputFile(path, "mesh file", MaxObjText);
     if (isGzip(data)) data = gunzip(data, path);
-    return parseObj(data, path);
+    MeshData mesh;
+    try {
+        mesh = parseObj(data, path);
+    } catch (const std::bad_alloc &) {
+        throw NoriException("{}: out of memory reading the mesh", path);
+    }
+    // Prose, or an OBJ of points and lines only: an empty mesh would render as a silent black image.
+    if (mesh.faces.empty()) throw NoriException("{}: no triangles (no 'f' statement with 3 or more vertices)", path);
+    return mesh;
 }
 
 } // namespace nori

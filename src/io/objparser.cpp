@@ -290,9 +290,49 @@ MeshData unify(ObjParser &P, bool useT, bool useN) {
     return data;
 }
 
-} // namespace
+/// Does \p text have a line ending in '\\' (a continuation) or a CR not followed by LF?
+bool needsLineNormalizing(std::string_view text) {
+    for (size_t i = text.find('\r'); i != std::string_view::npos; i = text.find('\r', i + 1))
+        if (i + 1 == text.size() || text[i + 1] != '\n') return true;
+    for (size_t i = text.find('\\'); i != std::string_view::npos; i = text.find('\\', i + 1))
+        if (i + 1 == text.size() || text[i + 1] == '\n' || text[i + 1] == '\r') return true;
+    return false;
+}
 
-MeshData parseObj(std::string_view text, const std::string &name) {
+/// LF line ends only: a lone CR (old Mac files) ends a line, and a '\\' at the end of a line
+/// joins the next one. The newline a continuation removes is put back after the joined
+/// statement, so every later line keeps its number in error messages.
+std::string normalizeLines(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    size_t owed = 0;  // newlines removed by continuations of the current statement
+    auto lineEndAt = [&](size_t i) { return i < text.size() && (text[i] == '\n' || text[i] == '\r'); };
+    auto skipLineEnd = [&](size_t i) { return text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n' ? i + 1 : i; };
+    for (size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (c == '\\' && (i + 1 == text.size() || lineEndAt(i + 1))) {
+            out += ' ';
+            if (i + 1 < text.size()) {
+                i = skipLineEnd(i + 1);
+                ++owed;
+            }
+            continue;
+        }
+        if (c == '\r') {
+            i = skipLineEnd(i);
+            c = '\n';
+        }
+        out += c;
+        if (c == '\n') {
+            out.append(owed, '\n');
+            owed = 0;
+        }
+    }
+    return out;
+}
+
+/// parseObj() for text with LF line ends only.
+MeshData parseLines(std::string_view text, const std::string &name) {
     const uint32_t unbounded[3] = {NoIndex, NoIndex, NoIndex};
     ObjParser P(text, name, unbounded);
     P.run();
@@ -317,6 +357,13 @@ MeshData parseObj(std::string_view text, const std::string &name) {
         return data;
     }
     return unify(P, useT, useN);
+}
+
+} // namespace
+
+MeshData parseObj(std::string_view text, const std::string &name) {
+    if (!needsLineNormalizing(text)) return parseLines(text, name);
+    return parseLines(normalizeLines(text), name);
 }
 
 } // namespace nori

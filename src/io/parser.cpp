@@ -1,8 +1,12 @@
+/// \file parser.cpp
+/// \brief Loads Nori's XML scene format (implementation).
+#include "input_file.h"
 #include <nori/parser.h>
 #include <nori/resolver.h>
 #include <nori/scene.h>
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <charconv>
 #include <filesystem>
 #include <fstream>
@@ -116,17 +120,40 @@ class SceneParser {
 public:
     SceneParser(std::string path, std::string text, const SceneOverrides &overrides)
         : m_path(std::move(path)), m_text(std::move(text)), m_overrides(overrides) {
+        // A UTF-8 byte order mark is no character: drop it so that columns on line 1 stay right.
+        if (m_text.compare(0, 3, "\xEF\xBB\xBF") == 0) m_text.erase(0, 3);
         m_lineStarts.push_back(0);
         for (size_t i = 0; i < m_text.size(); ++i)
             if (m_text[i] == '\n') m_lineStarts.push_back(i + 1);
     }
 
     std::unique_ptr<NoriObject> parse() {
+        pugi::xml_document doc;
+        pugi::xml_node root = documentElement(doc);
+        PropertyList unusedProps;
+        Transform unusedTransform;
+        std::unique_ptr<NoriObject> object = parseElement(root, Tag::Unknown, unusedProps, unusedTransform);
+        if (!object) throw NoriException("{}: the root element must be an object such as <scene>", where(root));
+        return object;
+    }
+
+    /// The document's single top-level element (XML errors throw), before any object is built.
+    pugi::xml_node documentElement(pugi::xml_document &doc) {
+        // UTF-16 and UTF-32 (with or without a byte order mark, XML 1.0 appendix F) would only
+        // be called binary below: name the encoding instead.
+        static const std::pair<const char *, std::string> encodings[] = {
+            {"UTF-32", std::string("\x00\x00\xFE\xFF", 4)}, {"UTF-32", std::string("\xFF\xFE\x00\x00", 4)},
+            {"UTF-32", std::string("\x00\x00\x00<", 4)},     {"UTF-32", std::string("<\x00\x00\x00", 4)},
+            {"UTF-16", std::string("\xFE\xFF")},             {"UTF-16", std::string("\xFF\xFE")},
+            {"UTF-16", std::string("\x00<", 2)},               {"UTF-16", std::string("<\x00", 2)}};
+        for (const auto &[name, start] : encodings)
+            if (m_text.compare(0, start.size(), start) == 0)
+                throw NoriException("{}:1:1: the file is {} encoded; scene files must be UTF-8 (save it as UTF-8)",
+                                    m_path, name);
         // A NUL byte never occurs in XML text: say "binary" instead of a confusing parse error.
         size_t nul = m_text.find('\0');
         if (nul != std::string::npos)
             throw NoriException("{}: binary data (a NUL byte), not an XML scene file", where(ptrdiff_t(nul)));
-        pugi::xml_document doc;
         pugi::xml_parse_result result = doc.load_buffer(m_text.data(), m_text.size(), pugi::parse_default);
         // pugixml reports "no document element" at the end of the file; line 1 is more useful.
         if (result.status == pugi::status_no_document_element)
@@ -139,11 +166,7 @@ public:
         for (pugi::xml_node extra = root.next_sibling(); extra; extra = extra.next_sibling())
             if (extra.type() == pugi::node_element)
                 fail(extra, fmt::format("a second top-level element <{}> (a scene file has one root)", extra.name()));
-        PropertyList unusedProps;
-        Transform unusedTransform;
-        std::unique_ptr<NoriObject> object = parseElement(root, Tag::Unknown, unusedProps, unusedTransform);
-        if (!object) throw NoriException("{}: the root element must be an object such as <scene>", where(root));
-        return object;
+        return root;
     }
 
 private:
@@ -187,10 +210,15 @@ private:
 
     void checkAttributes(const pugi::xml_node &node, std::initializer_list<const char *> allowed,
                          std::initializer_list<const char *> required) const {
+        // XML forbids an attribute twice in one tag (pugixml keeps both): which value was meant?
+        for (pugi::xml_attribute attr = node.first_attribute(); attr; attr = attr.next_attribute())
+            for (pugi::xml_attribute later = attr.next_attribute(); later; later = later.next_attribute())
+                if (std::strcmp(attr.name(), later.name()) == 0)
+                    fail(node, fmt::format("attribute '{}' given twice in <{}>", shown(attr.name()), node.name()));
         for (const pugi::xml_attribute &attr : node.attributes()) {
             bool ok = std::any_of(allowed.begin(), allowed.end(),
                                   [&](const char *a) { return std::string(a) == attr.name(); });
-            if (!ok) fail(node, fmt::format("unexpected attribute '{}' in <{}>", attr.name(), node.name()));
+            if (!ok) fail(node, fmt::format("unexpected attribute '{}' in <{}>", shown(attr.name()), node.name()));
         }
         for (const char *r : required)
             if (!node.attribute(r)) fail(node, fmt::format("<{}> needs the attribute '{}'", node.name(), r));
@@ -206,10 +234,10 @@ private:
         float value = 0.0f;
         auto [ptr, ec] = std::from_chars(begin, end, value);
         if (ec == std::errc::result_out_of_range && ptr == end)
-            fail(node, fmt::format("{} '{}' is out of the float range", what, text));
+            fail(node, fmt::format("{} '{}' is out of the float range", what, shown(text)));
         if (ec != std::errc() || ptr != end || begin == end)
-            fail(node, fmt::format("{} '{}' is not a number", what, text));
-        if (!std::isfinite(value)) fail(node, fmt::format("{} '{}' is not a finite number", what, text));
+            fail(node, fmt::format("{} '{}' is not a number", what, shown(text)));
+        if (!std::isfinite(value)) fail(node, fmt::format("{} '{}' is not a finite number", what, shown(text)));
         return value;
     }
 
@@ -235,7 +263,7 @@ private:
         std::vector<std::string> tokens = splitComponents(text);
         if (allowScalar && tokens.size() == 1) return Vector3f::Constant(parseFloat(node, tokens[0], what));
         if (tokens.size() != 3)
-            fail(node, fmt::format("{} '{}' must have 3 components, found {}", what, text, tokens.size()));
+            fail(node, fmt::format("{} '{}' must have 3 components, found {}", what, shown(text), tokens.size()));
         return Vector3f(parseFloat(node, tokens[0], what), parseFloat(node, tokens[1], what),
                         parseFloat(node, tokens[2], what));
     }
@@ -249,9 +277,9 @@ private:
         auto [ptr, ec] = std::from_chars(begin, end, value);
         if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == end && begin != end &&
                                                      (value > INT32_MAX || value < INT32_MIN)))
-            fail(node, fmt::format("integer '{}' is out of range", text));
+            fail(node, fmt::format("integer '{}' is out of range", shown(text)));
         if (ec != std::errc() || ptr != end || begin == end)
-            fail(node, fmt::format("'{}' is not an integer", text));
+            fail(node, fmt::format("'{}' is not an integer", shown(text)));
         return int(value);
     }
 
@@ -303,7 +331,7 @@ private:
         if (node.type() != pugi::node_element) return nullptr;
         const std::string name = node.name();
         TagInfo info = classify(name);
-        if (info.tag == Tag::Unknown) fail(node, fmt::format("unknown element <{}>", name));
+        if (info.tag == Tag::Unknown) fail(node, fmt::format("unknown element <{}>", shown(name)));
 
         const bool parentIsObject = parentTag == Tag::Object;
         if (info.tag == Tag::Object) {
@@ -326,6 +354,9 @@ private:
         }
         if (isTransformOperation(info.tag)) {
             parentTransform = parseTransformOperation(node, info.tag) * parentTransform;
+            // Each operation may be fine and their product singular (two scales of 1e-25).
+            if (!parentTransform.isInvertible())
+                fail(node, "the transform becomes singular (or not finite) with this operation");
             return nullptr;
         }
         parseProperty(node, info.tag, parentProps);
@@ -351,7 +382,7 @@ private:
         switch (tag) {
         case Tag::Boolean:
             if (value != "true" && value != "false")
-                fail(node, fmt::format("boolean '{}' must be 'true' or 'false'", value));
+                fail(node, fmt::format("boolean '{}' must be 'true' or 'false'", shown(value)));
             props.setBoolean(name, value == "true", loc);
             break;
         case Tag::Integer: props.setInteger(name, parseInteger(node, value), loc); break;
@@ -401,7 +432,7 @@ private:
         std::vector<std::string> unused = props.unusedProperties();
         if (!unused.empty())
             throw NoriException("{}: unused property '{}' in <{} type=\"{}\">", props.whereIs(unused.front()),
-                                unused.front(), node.name(), type);
+                                shown(unused.front()), node.name(), shown(type));
         for (auto &child : children) object->addChild(std::move(child));
         object->activate();
         return object;
@@ -439,22 +470,13 @@ private:
     int m_depth = 0;
 };
 
-/// Read the whole file, with clear messages for the usual ways this fails.
-std::string readSceneFile(const std::string &path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw NoriException("{}: is a directory, not a scene file", path);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw NoriException("{}: cannot open: {}", path, std::strerror(errno));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) throw NoriException("{}: cannot read: {}", path, std::strerror(errno));
-    return buffer.str();
-}
+/// A scene file larger than this is not a hand-written or generated scene but a mistake.
+constexpr size_t MaxSceneBytes = size_t(64) << 20;
 
 } // namespace
 
 std::unique_ptr<NoriObject> loadFromXML(const std::string &path, const SceneOverrides &overrides) {
-    std::string text = readSceneFile(path);
+    std::string text = readInputFile(path, "scene file", MaxSceneBytes);
     // Files named in the scene are looked up next to it first (undone however parsing ends).
     std::string folder = std::filesystem::path(path).parent_path().string();
     fileResolver().prepend(folder.empty() ? "." : folder);
@@ -465,10 +487,17 @@ std::unique_ptr<NoriObject> loadFromXML(const std::string &path, const SceneOver
     return parser.parse();
 }
 
+std::string rootElementName(const std::string &path) {
+    const SceneOverrides none;
+    SceneParser parser(path, readInputFile(path, "scene file", MaxSceneBytes), none);
+    pugi::xml_document doc;
+    return parser.documentElement(doc).name();
+}
+
 std::unique_ptr<Scene> loadScene(const std::string &path, const SceneOverrides &overrides) {
     std::unique_ptr<NoriObject> root = loadFromXML(path, overrides);
     if (root->getClassType() != NoriObject::EScene)
-        throw NoriException("{}: the root element is <{}>, expected <scene>", root->location(),
+        throw NoriException("{}: the root element is <{}>, expected <scene> (or <test> for a test file)", root->location(),
                             NoriObject::classTypeName(root->getClassType()));
     return std::unique_ptr<Scene>(static_cast<Scene *>(root.release()));
 }

@@ -1,3 +1,5 @@
+/// \file resolver.cpp
+/// \brief Finds the files a scene refers to: scene folder first, then the `-a` search path (implementation).
 #include <nori/resolver.h>
 #include <filesystem>
 

@@ -1,4 +1,5 @@
-/// ImageBlock (filtered sample accumulation) and BlockGenerator (deterministic tiling).
+/// \file block.cpp
+/// \brief ImageBlock (filtered sample accumulation) and BlockGenerator (deterministic tiling).
 #include <nori/block.h>
 #include <nori/rfilter.h>
 #include <algorithm>

@@ -1,3 +1,5 @@
+/// \file progress.cpp
+/// \brief Progress display on stderr: a bar on a terminal, sparse lines otherwise (implementation).
 #include <nori/progress.h>
 #include <cstdio>
 #include <unistd.h>
@@ -7,6 +9,11 @@ namespace nori {
 ProgressReporter::ProgressReporter(const std::string &label, long total, bool enabled)
     : m_label(label), m_total(total > 0 ? total : 1), m_enabled(enabled), m_terminal(isatty(STDERR_FILENO) != 0),
       m_start(std::chrono::steady_clock::now()), m_lastDraw(m_start) {}
+
+ProgressReporter::~ProgressReporter() {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    if (m_lineOpen) std::fputc('\n', stderr);
+}
 
 void ProgressReporter::advance(long steps) {
     long done = m_done.fetch_add(steps) + steps;
@@ -37,6 +44,7 @@ void ProgressReporter::draw(long done, bool final) {
         std::fprintf(stderr, "\r%s [%s] %5.1f%% %6.1fs elapsed, %6.1fs left ", m_label.c_str(), bar.c_str(),
                      100.0 * fraction, elapsed, eta);
         if (final) std::fputc('\n', stderr);
+        m_lineOpen = !final;
     } else {
         // Logs get one line per 10%.
         int decile = int(fraction * 10.0);

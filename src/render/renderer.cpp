@@ -1,3 +1,5 @@
+/// \file renderer.cpp
+/// \brief Block-based image renderer, single-threaded or on oneTBB (implementation).
 #include <nori/block.h>
 #include <nori/progress.h>
 #include <nori/renderer.h>
@@ -12,14 +14,20 @@ namespace nori {
 
 namespace {
 
+/// Rays of one block, by kind.
+struct BlockRays {
+    uint64_t camera = 0;
+    Scene::RayCounts traced;
+};
+
 /// Renders one block: every pixel, every sample, splatted with the camera's filter.
-uint64_t renderBlock(const Scene &scene, Sampler &sampler, ImageBlock &block) {
+BlockRays renderBlock(const Scene &scene, Sampler &sampler, ImageBlock &block) {
     const Camera &camera = scene.camera();
     const Integrator &integrator = scene.integrator();
     const Point2i offset = block.offset();
     const Vector2i size = block.size();
     const int spp = sampler.sampleCount();
-    uint64_t raysBefore = Scene::threadRayCount();
+    const Scene::RayCounts before = Scene::threadRayCounts();
     for (int y = 0; y < size.y(); ++y)
         for (int x = 0; x < size.x(); ++x)
             for (int s = 0; s < spp; ++s) {
@@ -28,7 +36,12 @@ uint64_t renderBlock(const Scene &scene, Sampler &sampler, ImageBlock &block) {
                 Color3f weight = camera.sampleRay(ray, pixel, sampler.next2D());
                 block.put(pixel, weight * integrator.Li(scene, sampler, ray));
             }
-    return Scene::threadRayCount() - raysBefore;
+    const Scene::RayCounts after = Scene::threadRayCounts();
+    BlockRays rays;
+    rays.camera = uint64_t(size.x()) * uint64_t(size.y()) * uint64_t(spp);
+    rays.traced.closestHit = after.closestHit - before.closestHit;
+    rays.traced.shadow = after.shadow - before.shadow;
+    return rays;
 }
 
 /// Collects finished blocks and adds them to the image strictly in block-index order:
@@ -74,7 +87,7 @@ RenderResult BlockRenderer::render(const RenderSettings &settings) const {
     ProgressReporter progress("Rendering", generator.blockCount(), settings.progress);
 
     std::atomic<int> rendered{0};
-    std::atomic<uint64_t> rays{0}, dropped{0};
+    std::atomic<uint64_t> cameraRays{0}, closestHitRays{0}, shadowRays{0}, dropped{0};
     auto cancelled = [&] { return settings.cancel && settings.cancel->load(); };
     auto work = [&](int index) {
         if (cancelled()) return;
@@ -82,7 +95,10 @@ RenderResult BlockRenderer::render(const RenderSettings &settings) const {
         generator.prepare(index, block);
         std::unique_ptr<Sampler> sampler = m_scene.sampler().clone();
         sampler->prepare(uint64_t(index));
-        rays += renderBlock(m_scene, *sampler, block);
+        BlockRays rays = renderBlock(m_scene, *sampler, block);
+        cameraRays += rays.camera;
+        closestHitRays += rays.traced.closestHit;
+        shadowRays += rays.traced.shadow;
         dropped += block.droppedSamples();
         merger.add(index, std::move(block));
         ++rendered;
@@ -107,7 +123,10 @@ RenderResult BlockRenderer::render(const RenderSettings &settings) const {
     result.blockCount = generator.blockCount();
     result.blocksRendered = rendered.load();
     result.complete = result.blocksRendered == result.blockCount;
-    result.rays = rays.load();
+    result.cameraRays = cameraRays.load();
+    result.closestHitRays = closestHitRays.load();
+    result.shadowRays = shadowRays.load();
+    result.rays = result.closestHitRays + result.shadowRays;
     result.droppedSamples = dropped.load() + image.droppedSamples();
     result.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result;

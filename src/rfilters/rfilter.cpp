@@ -1,4 +1,5 @@
-/// Reconstruction filter plugins: gaussian, box, tent and mitchell.
+/// \file rfilter.cpp
+/// \brief Reconstruction filter plugins: gaussian, box, tent and mitchell.
 #include <nori/rfilter.h>
 #include <cmath>
 
@@ -14,6 +15,16 @@ float positiveProperty(const PropertyList &props, const std::string &name, float
     return value;
 }
 
+/// A filter radius: positive, and at most MaxRadius pixels. A wider filter does not sharpen
+/// anything; it only makes every sample touch (2r)^2 pixels (2000 took 14 s on 16x16 pixels).
+constexpr float MaxRadius = 32.0f;
+float radiusProperty(const PropertyList &props, float defaultValue) {
+    float value = positiveProperty(props, "radius", defaultValue);
+    if (value > MaxRadius)
+        props.fail("radius", fmt::format("filter radius must be at most {} pixels (got {})", MaxRadius, value));
+    return value;
+}
+
 /// Read an optional finite float property.
 float finiteProperty(const PropertyList &props, const std::string &name, float defaultValue) {
     float value = props.getFloat(name, defaultValue);
@@ -26,7 +37,7 @@ float finiteProperty(const PropertyList &props, const std::string &name, float d
 class GaussianFilter : public ReconstructionFilter {
 public:
     explicit GaussianFilter(const PropertyList &props) {
-        m_radius = positiveProperty(props, "radius", 2.0f);
+        m_radius = radiusProperty(props, 2.0f);
         m_stddev = positiveProperty(props, "stddev", 0.5f);
         m_alpha = 1.0f / (2.0f * m_stddev * m_stddev);
         m_floor = std::exp(-m_alpha * m_radius * m_radius);
@@ -58,7 +69,7 @@ public:
 /// Tent (triangle): linear fall-off from 1 at the centre to 0 at the radius.
 class TentFilter : public ReconstructionFilter {
 public:
-    explicit TentFilter(const PropertyList &props) { m_radius = positiveProperty(props, "radius", 1.0f); }
+    explicit TentFilter(const PropertyList &props) { m_radius = radiusProperty(props, 1.0f); }
 
     float eval(float x) const override { return std::max(0.0f, 1.0f - std::abs(x) / m_radius); }
 
@@ -74,7 +85,7 @@ public:
 class MitchellFilter : public ReconstructionFilter {
 public:
     explicit MitchellFilter(const PropertyList &props) {
-        m_radius = positiveProperty(props, "radius", 2.0f);
+        m_radius = radiusProperty(props, 2.0f);
         m_B = finiteProperty(props, "B", 1.0f / 3.0f);
         m_C = finiteProperty(props, "C", 1.0f / 3.0f);
     }

@@ -1,4 +1,5 @@
-/// Independent uniform sampler on a PCG32 generator (O'Neill 2014).
+/// \file independent.cpp
+/// \brief Independent uniform sampler on a PCG32 generator (O'Neill 2014).
 #include <nori/sampler.h>
 #include <pcg_random.hpp>
 

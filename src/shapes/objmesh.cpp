@@ -1,4 +1,5 @@
-/// Mesh loaded from a Wavefront OBJ file (Nori's `obj`).
+/// \file objmesh.cpp
+/// \brief Mesh loaded from a Wavefront OBJ file (Nori's `obj`).
 #include <nori/mesh.h>
 #include <nori/objloader.h>
 #include <nori/resolver.h>

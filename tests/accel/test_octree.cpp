@@ -1,7 +1,8 @@
-// Octree versus brute force on generated meshes: an independent check of the build and the
-// traversals (both accelerators run the same TriangleStore kernels, so every answer must be
-// bit-identical: hit/miss, triangle, t, u, v), plus property handling, statistics and bounded
-// builds on pathological inputs.
+/// \file test_octree.cpp
+/// \brief Octree versus brute force on generated meshes: an independent check of the build and the
+/// traversals (both accelerators run the same TriangleStore kernels, so every answer must be
+/// bit-identical: hit/miss, triangle, t, u, v), plus property handling, statistics and bounded
+/// builds on pathological inputs.
 #include <gtest/gtest.h>
 #include "accel/octree.h"
 #include <ray_sets.h>

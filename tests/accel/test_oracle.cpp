@@ -1,27 +1,17 @@
-// Oracle tests: every exact octree traversal x intersector agrees with Embree's robust mode on
-// the shared meshes and the meshed Nori scenes, over more than a million rays per mesh.
-//
-// Agreement rule, per ray (closest hit; for shadow rays the same rule on hit/miss):
-//  * match:  same hit/miss; when both hit, the same triangle and both hit points within eps
-//            of it (t may differ by more for a grazing ray: rounding across the plane is
-//            amplified by 1 / sin(angle)).
-//  * tie:    both hit different triangles and each hit point lies within eps of the other's
-//            triangle (duplicated / back-to-back triangles, hits on a shared edge or vertex,
-//            crossing triangles): both answers are the closest hit up to rounding.
-//  * edge:   the answers differ and the ray passes within eps of the boundary of the nearer
-//            of the two hit triangles (for a hit/miss pair: of the triangle that was hit), so
-//            moving the ray by eps would flip that hit (a grazing or edge hit that Embree's
-//            robust test and ours round to different sides).
-//  * range:  the answers differ and the nearer hit's t lies within eps of ray.mint or ray.maxt.
-//  * anything else is unexplained and fails the test.
-// eps = 2^-17 (about 64 float ulps) of the problem's scale: the largest coordinate magnitude
-// of the ray origin, the hit points and t |d|. All geometry of the rule is evaluated in double.
+/// \file test_oracle.cpp
+/// \brief Oracle tests: every exact octree traversal x intersector agrees with Embree's robust
+/// mode, up to the disagreements the judge explains (tests/support/oracle_judge.h: tie, edge,
+/// range), on the shared meshes (over a million rays each), on the generated scenes of every
+/// shape (scenes/generators) and on Nori's pa5 scenes (cbox, table, veach_mi; geometry and
+/// camera only), for primary, diffuse and shadow rays.
 #include <gtest/gtest.h>
 #include <nori/objloader.h>
 #include "accel/octree.h"
 #include <embree_oracle.h>
-#include "test_geometry.h"
+#include <oracle_judge.h>
 #include <ray_sets.h>
+#include <scene_generator.h>
+#include <scene_geometry.h>
 #include <tbb/parallel_for.h>
 #include <atomic>
 #include <filesystem>
@@ -30,76 +20,13 @@ using namespace nori;
 
 namespace {
 
-enum Verdict { Match, Tie, Edge, Range, Unexplained, VerdictCount };
-const char *kVerdictNames[] = {"match", "tie", "edge", "range", "UNEXPLAINED"};
-
-/// Applies the rule of the file comment to one ray.
-class Judge {
-public:
-    explicit Judge(const std::vector<const Mesh *> &meshes) : m_meshes(meshes) {
-        for (const Mesh *m : meshes) m_offsets.push_back(m_offsets.back() + m->triangleCount());
-    }
-
-    Verdict judge(const Ray3f &ray, bool hitO, const Hit &o, bool hitE, const Hit &e) const {
-        if (!hitO && !hitE) return Match;
-        double eps = 0x1p-17 * scale(ray, hitO, o, hitE, e);
-        double dnorm = ray.d.cast<double>().norm();
-        if (hitO && hitE) {
-            // Each hit point within eps of the other answer's triangle: the same closest hit
-            // up to rounding (for one triangle: the two t differ only as the ray's grazing
-            // angle amplifies rounding across the plane).
-            if (pointTriangleDistance(point(ray, o), corner(e.prim, 0), corner(e.prim, 1), corner(e.prim, 2)) <= eps &&
-                pointTriangleDistance(point(ray, e), corner(o.prim, 0), corner(o.prim, 1), corner(o.prim, 2)) <= eps)
-                return o.prim == e.prim ? Match : Tie;
-        }
-        // The nearer hit decides: it is the one the other side missed.
-        const Hit &nearer = !hitE || (hitO && o.t < e.t) ? o : e;
-        if (std::abs(double(nearer.t) - double(ray.maxt)) * dnorm <= eps ||
-            std::abs(double(nearer.t) - double(ray.mint)) * dnorm <= eps)
-            return Range;
-        if (rayPassesEdge(ray, nearer, eps)) return Edge;
-        return Unexplained;
-    }
-
-private:
-    V3d corner(uint32_t prim, int k) const {
-        size_t idx = size_t(std::upper_bound(m_offsets.begin(), m_offsets.end(), prim) - m_offsets.begin()) - 1;
-        return m_meshes[idx]->vertex(prim - m_offsets[idx], k).cast<double>();
-    }
-    static V3d point(const Ray3f &ray, const Hit &h) {
-        return ray.o.cast<double>() + double(h.t) * ray.d.cast<double>();
-    }
-    double scale(const Ray3f &ray, bool hitO, const Hit &o, bool hitE, const Hit &e) const {
-        double s = ray.o.cast<double>().cwiseAbs().maxCoeff();
-        for (const Hit *h : {hitO ? &o : nullptr, hitE ? &e : nullptr}) {
-            if (!h) continue;
-            s = std::max(s, point(ray, *h).cwiseAbs().maxCoeff());
-            s = std::max(s, double(h->t) * ray.d.cast<double>().norm());
-        }
-        return s;
-    }
-    /// Does the ray pass within eps of one of the triangle's three edges, i.e. would moving it
-    /// by eps turn this hit into a miss? Only the piece of the ray that can come near the
-    /// triangle (two edge lengths around the hit) is considered.
-    bool rayPassesEdge(const Ray3f &ray, const Hit &h, double eps) const {
-        V3d o = ray.o.cast<double>(), d = ray.d.cast<double>();
-        V3d a = corner(h.prim, 0), b = corner(h.prim, 1), c = corner(h.prim, 2);
-        double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-        double span = 2.0 * size / d.norm();
-        double t0 = std::max(double(ray.mint), double(h.t) - span), t1 = std::min(double(ray.maxt), double(h.t) + span);
-        V3d r0 = o + t0 * d, r1 = o + t1 * d;
-        return segmentDistance(r0, r1, a, b) <= eps || segmentDistance(r0, r1, b, c) <= eps ||
-               segmentDistance(r0, r1, c, a) <= eps;
-    }
-
-    std::vector<const Mesh *> m_meshes;
-    std::vector<uint32_t> m_offsets{0};
-};
+using Judge = OracleJudge;
 
 struct RaySet {
     std::string name;
     std::vector<Ray3f> rays;
     bool anyHit;
+    std::vector<uint32_t> sources;  ///< the triangle each ray leaves (spawned rays only)
 };
 
 /// The four kinds of rays, about 1.2M in all (fewer diffuse rays when the mesh fills little
@@ -110,12 +37,12 @@ std::vector<RaySet> makeRaySets(const std::vector<const Mesh *> &meshes, const E
     auto camera = framingCamera(bbox, 640, 480);
     auto hitFn = [&](const Ray3f &r, Hit &h) { return oracle.intersect(r, h); };
     std::vector<RaySet> sets;
-    sets.push_back({"camera", cameraRays(*camera, 1, 11), false});
-    sets.push_back({"diffuse", diffuseRays(sets[0].rays, hitFn, table, 12), false});
-    sets.push_back({"shadow", surfaceShadowRays(sets[0].rays, hitFn, table, 300000, 13), true});
+    sets.push_back({"camera", cameraRays(*camera, 1, 11), false, {}});
+    sets.push_back({"diffuse", diffuseRays(sets[0].rays, hitFn, table, 12), false, {}});
+    sets.push_back({"shadow", surfaceShadowRays(sets[0].rays, hitFn, table, 300000, 13), true, {}});
     size_t total = sets[0].rays.size() + sets[1].rays.size() + sets[2].rays.size();
     size_t randomCount = std::max<size_t>(300000, total < 1050000 ? 1050000 - total : 0);
-    sets.push_back({"random", randomBoxRays(bbox, randomCount, 14), false});
+    sets.push_back({"random", randomBoxRays(bbox, randomCount, 14), false, {}});
     return sets;
 }
 
@@ -207,7 +134,7 @@ TEST_P(Oracle, ExactTraversalsAgreeWithEmbree) {
             auto counts = compare(octree, oracle, judge, set);
             std::printf("[oracle] %-12s %-6s %-10s leaf %3d %-7s rays %7zu:", GetParam().name.c_str(), cfg.traversal,
                         cfg.intersector, cfg.leafSize, set.name.c_str(), set.rays.size());
-            for (int v = 0; v < VerdictCount; ++v) std::printf(" %s %zu", kVerdictNames[v], counts[v]);
+            for (int v = 0; v < VerdictCount; ++v) std::printf(" %s %zu", verdictName(v), counts[v]);
             if (!cfg.exact)
                 std::printf("  (%.3f%% not closest; measured, not asserted)",
                             100.0 * double(counts[Unexplained]) / double(std::max<size_t>(1, set.rays.size())));
@@ -242,5 +169,232 @@ std::vector<OracleCase> oracleCases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, Oracle, testing::ValuesIn(oracleCases()), caseName);
+
+// ---- Scenes: the generated shapes and Nori's pa5 scenes, seen through their own cameras ----
+
+/// A scene for the oracle: a generated shape, or a Nori scene file under NORI_SHARED_DIR.
+struct SceneCase {
+    std::string name;
+    std::string shape;  ///< generator name, or empty
+    std::string file;   ///< scene file relative to NORI_SHARED_DIR, or empty
+};
+
+std::string sceneCaseName(const testing::TestParamInfo<SceneCase> &info) { return info.param.name; }
+void PrintTo(const SceneCase &c, std::ostream *os) { *os << c.name; }
+
+/// Meshes and camera of one case (skips the test when a shared file is missing).
+struct LoadedScene {
+    std::vector<std::unique_ptr<Mesh>> owned;
+    std::unique_ptr<Camera> ownedCamera;
+    std::unique_ptr<Scene> scene;
+    std::vector<const Mesh *> meshes;
+    const Camera *camera = nullptr;
+
+    bool load(const SceneCase &c) {
+        if (!c.shape.empty()) {
+            gen::GeneratedScene g = gen::generateScene(c.shape);
+            ownedCamera = gen::makeCamera(g.camera);
+            owned.push_back(std::make_unique<Mesh>(std::move(g.mesh), c.shape));
+            meshes.push_back(owned.back().get());
+            camera = ownedCamera.get();
+            return true;
+        }
+        std::string path = std::string(NORI_SHARED_DIR) + "/" + c.file;
+        if (!std::filesystem::exists(path)) return false;
+        scene = loadSceneGeometry(path);
+        for (const auto &m : scene->meshes()) meshes.push_back(m.get());
+        camera = &scene->camera();
+        return true;
+    }
+};
+
+/// Every \p stride-th ray.
+std::vector<Ray3f> every(const std::vector<Ray3f> &rays, size_t stride) {
+    std::vector<Ray3f> out;
+    for (size_t i = 0; i < rays.size(); i += stride) out.push_back(rays[i]);
+    return out;
+}
+
+/// Primary rays (about 40k, a strided subset of the camera's pixels), one diffuse bounce and
+/// one segment to a point light above the scene per primary hit, and 20k segments between
+/// random pairs of primary hits. Embree robust finds the surface points, as in nori-bench.
+std::vector<RaySet> sceneRaySets(const LoadedScene &s, const EmbreeOracle &oracle) {
+    MeshTable table(s.meshes);
+    auto hitFn = [&](const Ray3f &r, Hit &h) { return oracle.intersect(r, h); };
+    std::vector<Ray3f> all = cameraRays(*s.camera, 1, 21);
+    std::vector<RaySet> sets(4);
+    sets[0] = {"primary", every(all, std::max<size_t>(1, all.size() / 40000)), false, {}};
+    sets[1] = {"diffuse", {}, false, {}};
+    sets[1].rays = diffuseRays(sets[0].rays, hitFn, table, 22, &sets[1].sources);
+    sets[2] = {"shadow", {}, true, {}};
+    sets[2].rays = lightShadowRays(sets[0].rays, hitFn, table, lightAbove(table.bbox()), &sets[2].sources);
+    sets[3] = {"surface", surfaceShadowRays(sets[0].rays, hitFn, table, 20000, 23), true, {}};
+    return sets;
+}
+
+std::vector<SceneCase> sceneCases() {
+    std::vector<SceneCase> cases;
+    for (const gen::ShapeInfo &info : gen::shapes()) cases.push_back({info.name, info.name, ""});
+    cases.push_back({"pa5_cbox", "", "nori-scenes/pa5/cbox/cbox_mis.xml"});
+    cases.push_back({"pa5_table", "", "nori-scenes/pa5/table/table_mis.xml"});
+    cases.push_back({"pa5_veach_mi", "", "nori-scenes/pa5/veach_mi/veach_mis.xml"});
+    return cases;
+}
+
+/// (scene, intersector) pairs whose unexplained disagreements are kernel precision faults, each
+/// with a minimal reproducing ray in test_kernel_precision.cpp (KnownBug.*): the watertight
+/// kernel's t on triangles far larger than their distance to the ray origin (the 2000-unit
+/// ground of tabletop, the stadium's field), and Möller-Trumbore's t on slivers (grass blades).
+/// SceneOracle prints their counts without asserting them; KnownBugSceneOracle asserts them and
+/// is registered in ctest as an expected failure until the kernels are fixed.
+bool knownKernelFault(const std::string &scene, const std::string &intersector) {
+    return (intersector == "watertight" && (scene == "tabletop" || scene == "stadium")) ||
+           (intersector == "mt" && scene == "grass");
+}
+
+/// Verdict counts of \p intersector (simd traversal, leaf size \p leafSize) on every set.
+std::vector<std::array<size_t, VerdictCount>> sceneVerdicts(const LoadedScene &s, const EmbreeOracle &oracle,
+                                                              const std::vector<RaySet> &sets, const char *traversal,
+                                                              const char *intersector, int leafSize) {
+    PropertyList props;
+    props.setString("traversal", traversal);
+    props.setString("intersector", intersector);
+    props.setInteger("leafSize", leafSize);
+    OctreeAccel octree(props);
+    for (const Mesh *m : s.meshes) octree.addMesh(m);
+    octree.build();
+    Judge judge(s.meshes);
+    std::vector<std::array<size_t, VerdictCount>> out;
+    for (const RaySet &set : sets) out.push_back(compare(octree, oracle, judge, set));
+    return out;
+}
+
+class SceneOracle : public testing::TestWithParam<SceneCase> {};
+
+TEST_P(SceneOracle, ExactTraversalsAgreeWithEmbree) {
+    LoadedScene s;
+    if (!s.load(GetParam())) GTEST_SKIP() << GetParam().file << " not found";
+    EmbreeOracle oracle(s.meshes);
+    std::vector<RaySet> sets = sceneRaySets(s, oracle);
+    for (const RaySet &set : sets) EXPECT_GT(set.rays.size(), 1000u) << set.name;
+
+    // The default octree, the other intersector and traversal, and a deep tree of small leaves.
+    struct Config { const char *traversal, *intersector; int leafSize; };
+    const Config configs[] = {{"simd", "watertight", 512}, {"simd", "mt", 512}, {"sorted", "watertight", 512},
+                              {"simd", "watertight", 16}};
+    for (const Config &cfg : configs) {
+        auto verdicts = sceneVerdicts(s, oracle, sets, cfg.traversal, cfg.intersector, cfg.leafSize);
+        bool known = knownKernelFault(GetParam().name, cfg.intersector);
+        for (size_t k = 0; k < sets.size(); ++k) {
+            const auto &counts = verdicts[k];
+            std::printf("[oracle] %-12s %-6s %-10s leaf %3d %-7s rays %6zu:", GetParam().name.c_str(), cfg.traversal,
+                        cfg.intersector, cfg.leafSize, sets[k].name.c_str(), sets[k].rays.size());
+            for (int v = 0; v < VerdictCount; ++v) std::printf(" %s %zu", verdictName(v), counts[v]);
+            std::printf("%s\n", known && counts[Unexplained] ? "  (known kernel fault: KnownBugSceneOracle)" : "");
+            if (!known) {
+                EXPECT_EQ(counts[Unexplained], 0u) << cfg.traversal << "/" << cfg.intersector << "/leafSize "
+                                                   << cfg.leafSize << " on " << sets[k].name;
+            }
+        }
+    }
+}
+
+/// Can \p ray reach the plane of global triangle \p prim (in double)? A ray whose origin lies
+/// off the plane and that points away from it (or a segment that ends on the same side) cannot.
+bool canReachPlane(const std::vector<const Mesh *> &meshes, uint32_t prim, const Ray3f &ray) {
+    for (const Mesh *m : meshes) {
+        if (prim >= m->triangleCount()) {
+            prim -= m->triangleCount();
+            continue;
+        }
+        Eigen::Vector3d a = m->vertex(prim, 0).cast<double>(), b = m->vertex(prim, 1).cast<double>(),
+                        c = m->vertex(prim, 2).cast<double>();
+        Eigen::Vector3d n = (b - a).cross(c - a), o = ray.o.cast<double>(), d = ray.d.cast<double>();
+        double s0 = n.dot(o - a);
+        if (s0 == 0.0) return true;
+        if (!std::isfinite(ray.maxt)) return s0 * n.dot(d) < 0.0;  // heading towards the plane
+        return s0 * n.dot(o + double(ray.maxt) * d - a) <= 0.0;     // the segment ends on the other side
+    }
+    return true;
+}
+
+/// A ray spawned from a surface point must not find the triangle it leaves when, exactly, it
+/// cannot reach that triangle's plane (it starts off the plane and points away from it): a
+/// hit then means the origin was not moved far enough off the surface for that intersector's
+/// rounding (a "range" disagreement with another intersector that rounds the other way).
+/// Checked for both octree intersectors and both Embree modes, on the diffuse bounces and on
+/// the segments to the light (which may legitimately cross their own triangle when the light
+/// is behind it; those are not counted).
+TEST_P(SceneOracle, SpawnedRaysNeverHitTheTriangleTheyLeave) {
+    LoadedScene s;
+    if (!s.load(GetParam())) GTEST_SKIP() << GetParam().file << " not found";
+    EmbreeOracle robust(s.meshes), fast(s.meshes, EmbreeOracle::Options{false, 0});
+    std::vector<RaySet> sets = sceneRaySets(s, robust);
+    std::vector<std::unique_ptr<OctreeAccel>> octrees;
+    for (const char *intersector : {"watertight", "mt"}) {
+        PropertyList props;
+        props.setString("intersector", intersector);
+        octrees.push_back(std::make_unique<OctreeAccel>(props));
+        for (const Mesh *m : s.meshes) octrees.back()->addMesh(m);
+        octrees.back()->build();
+    }
+    for (int k = 1; k <= 2; ++k) {
+        const RaySet &set = sets[size_t(k)];
+        ASSERT_EQ(set.sources.size(), set.rays.size());
+        std::array<std::atomic<size_t>, 4> selfHits{};
+        std::atomic<int> reported{0};
+        tbb::parallel_for(size_t(0), set.rays.size(), [&](size_t i) {
+            const Ray3f &ray = set.rays[i];
+            Hit h[4];
+            bool hit[4] = {octrees[0]->intersect(ray, h[0]), octrees[1]->intersect(ray, h[1]), robust.intersect(ray, h[2]),
+                           fast.intersect(ray, h[3])};
+            bool reachable = canReachPlane(s.meshes, set.sources[i], ray);
+            for (int a = 0; a < 4; ++a)
+                if (hit[a] && h[a].prim == set.sources[i] && !reachable) {
+                    ++selfHits[size_t(a)];
+                    if (reported.fetch_add(1) < 3)
+                        std::printf("[oracle]   self-hit (%s): o (%a, %a, %a) d (%a, %a, %a) leaves prim %u, t %g\n",
+                                    a == 0 ? "octree watertight" : a == 1 ? "octree mt" : a == 2 ? "embree robust"
+                                                                                                : "embree default",
+                                    ray.o.x(), ray.o.y(), ray.o.z(), ray.d.x(), ray.d.y(), ray.d.z(), set.sources[i],
+                                    h[a].t);
+                }
+        });
+        std::printf("[oracle] %-12s %-7s rays %6zu: self-hits octree watertight %zu, octree mt %zu, embree robust %zu, "
+                    "embree default %zu\n",
+                    GetParam().name.c_str(), set.name.c_str(), set.rays.size(), selfHits[0].load(), selfHits[1].load(),
+                    selfHits[2].load(), selfHits[3].load());
+        for (size_t a = 0; a < 4; ++a) {
+            bool known = a == 0 && knownKernelFault(GetParam().name, "watertight");
+            if (!known) {
+                EXPECT_EQ(selfHits[a].load(), 0u) << set.name << ", answer " << a;
+            }
+        }
+    }
+}
+
+/// The known kernel faults, asserted: expected to fail until the kernels are fixed (ctest
+/// WILL_FAIL, tests/CMakeLists.txt), then to move back into SceneOracle.
+class KnownBugSceneOracle : public testing::TestWithParam<SceneCase> {};
+
+TEST_P(KnownBugSceneOracle, ZeroUnexplained) {
+    LoadedScene s;
+    ASSERT_TRUE(s.load(GetParam()));
+    EmbreeOracle oracle(s.meshes);
+    std::vector<RaySet> sets = sceneRaySets(s, oracle);
+    for (const char *intersector : {"watertight", "mt"}) {
+        if (!knownKernelFault(GetParam().name, intersector)) continue;
+        auto verdicts = sceneVerdicts(s, oracle, sets, "simd", intersector, 512);
+        for (size_t k = 0; k < sets.size(); ++k)
+            EXPECT_EQ(verdicts[k][Unexplained], 0u) << intersector << " on " << sets[k].name;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(KnownBugScenes, KnownBugSceneOracle,
+                         testing::Values(SceneCase{"tabletop", "tabletop", ""}, SceneCase{"stadium", "stadium", ""},
+                                         SceneCase{"grass", "grass", ""}),
+                         sceneCaseName);
+
+INSTANTIATE_TEST_SUITE_P(Scenes, SceneOracle, testing::ValuesIn(sceneCases()), sceneCaseName);
 
 } // namespace

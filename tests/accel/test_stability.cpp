@@ -1,6 +1,7 @@
-// Numerical stability of ray queries: watertightness at shared edges and vertices, rays with
-// zero components or starting on boundaries, extreme maxt, triangles on octree split planes,
-// scale/offset consistency, and self-intersection of secondary rays (ao, simple).
+/// \file test_stability.cpp
+/// \brief Numerical stability of ray queries: watertightness at shared edges and vertices, rays with
+/// zero components or starting on boundaries, extreme maxt, triangles on octree split planes,
+/// scale/offset consistency, and self-intersection of secondary rays (ao, simple).
 #include "robust_util.h"
 
 #include <embree_oracle.h>

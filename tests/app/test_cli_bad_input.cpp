@@ -9,6 +9,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <sys/stat.h>
 
 namespace fs = std::filesystem;
 using nori::runTool;
@@ -93,6 +94,9 @@ public:
         fs::copy(BadDir, root / "bad", fs::copy_options::recursive);
         fs::create_directory(root / "bad" / "folder_not_a_mesh.obj");
         fs::create_directory(root / "bad" / "scene_is_folder.xml");
+        // FIFOs with no writer: opening one for reading would block forever.
+        for (const char *fifo : {"fifo.obj", "scene_is_fifo.xml"})
+            if (mkfifo((root / "bad" / fifo).c_str(), 0600) != 0) throw std::runtime_error("mkfifo failed");
     }
     ~CorpusCopy() {
         std::error_code ec;

@@ -1,3 +1,5 @@
+/// \file test_camera.cpp
+/// \brief Tests of the perspective camera: the centre ray, the horizontal field of view and the clip distances.
 #include <gtest/gtest.h>
 #include <nori/camera.h>
 

@@ -1,3 +1,5 @@
+/// \file test_transform.cpp
+/// \brief Tests of Transform: a translation composed with its inverse is the identity.
 #include <gtest/gtest.h>
 #include <nori/transform.h>
 

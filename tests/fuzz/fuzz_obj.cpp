@@ -1,4 +1,5 @@
-// libFuzzer entry point for the OBJ loader: any bytes must either parse or throw NoriException.
+/// \file fuzz_obj.cpp
+/// \brief libFuzzer entry point for the OBJ loader: any bytes must either parse or throw NoriException.
 #include <nori/objloader.h>
 
 #include <cstdio>

@@ -1,5 +1,6 @@
-// libFuzzer entry point for the XML scene parser: the bytes are written to a scene file in a
-// private folder (beside a small valid mesh, so that mesh loading is reachable) and loaded.
+/// \file fuzz_scene.cpp
+/// \brief libFuzzer entry point for the XML scene parser: the bytes are written to a scene file in a
+/// private folder (beside a small valid mesh, so that mesh loading is reachable) and loaded.
 #include <nori/parser.h>
 
 #include <cstdio>

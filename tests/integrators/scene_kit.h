@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nori/parser.h>
+#include <nori/running_statistics.h>
 #include <nori/sampler.h>
 #include <nori/scene.h>
 #include <temp_dir.h>
@@ -38,12 +39,12 @@ inline std::array<Point3f, 4> squareY(float cx, float y, float cz, float side) {
 inline std::vector<std::array<Point3f, 4>> cubeInward(const Point3f &c, float lo, float hi) {
     auto P = [&](float x, float y, float z) { return Point3f(c.x() + x, c.y() + y, c.z() + z); };
     return {
-        {P(lo, lo, lo), P(hi, lo, lo), P(hi, lo, hi), P(lo, lo, hi)},  // floor, normal +y
-        {P(lo, hi, lo), P(lo, hi, hi), P(hi, hi, hi), P(hi, hi, lo)},  // ceiling, -y
-        {P(lo, lo, lo), P(lo, lo, hi), P(lo, hi, hi), P(lo, hi, lo)},  // x = lo, +x
-        {P(hi, lo, lo), P(hi, hi, lo), P(hi, hi, hi), P(hi, lo, hi)},  // x = hi, -x
-        {P(lo, lo, lo), P(lo, hi, lo), P(hi, hi, lo), P(hi, lo, lo)},  // z = lo, +z
-        {P(lo, lo, hi), P(hi, lo, hi), P(hi, hi, hi), P(lo, hi, hi)},  // z = hi, -z
+        {P(lo, lo, lo), P(lo, lo, hi), P(hi, lo, hi), P(hi, lo, lo)},  // floor, normal +y
+        {P(lo, hi, lo), P(hi, hi, lo), P(hi, hi, hi), P(lo, hi, hi)},  // ceiling, -y
+        {P(lo, lo, lo), P(lo, hi, lo), P(lo, hi, hi), P(lo, lo, hi)},  // x = lo, +x
+        {P(hi, lo, lo), P(hi, lo, hi), P(hi, hi, hi), P(hi, hi, lo)},  // x = hi, -x
+        {P(lo, lo, lo), P(hi, lo, lo), P(hi, hi, lo), P(lo, hi, lo)},  // z = lo, +z
+        {P(lo, lo, hi), P(lo, hi, hi), P(hi, hi, hi), P(hi, lo, hi)},  // z = hi, -z
     };
 }
 
@@ -60,20 +61,8 @@ inline std::unique_ptr<Scene> loadSceneText(const TempDir &dir, const std::strin
     return loadScene(dir.write(name, xml));
 }
 
-/// \brief Running mean and variance (Welford).
-struct Estimate {
-    size_t n = 0;
-    double mean = 0.0, m2 = 0.0;
-    void add(double x) {
-        ++n;
-        double delta = x - mean;
-        mean += delta / double(n);
-        m2 += delta * (x - mean);
-    }
-    double variance() const { return n > 1 ? m2 / double(n - 1) : 0.0; }
-    /// \brief Standard error of the mean.
-    double stderror() const { return std::sqrt(variance() / double(n)); }
-};
+/// \brief Running mean and variance of the scene estimator's samples.
+using Estimate = RunningStatistics;
 
 /// \brief Nori's scene estimator: \p count camera rays through uniformly random film positions,
 /// luminance of weight * Li. \p visit (optional) sees every ray and value.

@@ -1,9 +1,11 @@
-// Tests for the OBJ parser: statements, index forms, triangulation, attribute handling
+/// \file test_objloader.cpp
+/// \brief Tests for the OBJ parser: statements, index forms, triangulation, attribute handling
 // and error messages. File, gzip and real-mesh tests are in test_objloader_files.cpp.
 #include <gtest/gtest.h>
 #include <error_of.h>
 #include <nori/objloader.h>
 #include <cctype>
+#include <unistd.h>
 
 using namespace nori;
 using namespace std::string_literals;
@@ -296,4 +298,39 @@ TEST(ObjLoaderError, BinaryGarbageAfterValidLines) {
 TEST(ObjLoaderError, NameIsTheOneGiven) {
     std::string msg = errorOf([] { parseObj("v 1 2\n", "some/dir/mesh name.obj"); });
     EXPECT_EQ(msg, "some/dir/mesh name.obj:1: 'v' statement needs 3 coordinates, found 2");
+}
+
+// Old Mac files end lines with a lone CR; each is a line of its own, also in messages.
+TEST(ObjLoader, CarriageReturnOnlyLineEndsAreLines) {
+    MeshData m = parse("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r");
+    EXPECT_EQ(m.positions.size(), 3u);
+    EXPECT_EQ(m.faces.size(), 1u);
+    EXPECT_EQ(parseError("v 0 0 0\rv 1 0 0\rv 0 1 x\r").rfind("test.obj:3: ", 0), 0u) << parseError("v 0 0 0\rv 1 0 0\rv 0 1 x\r");
+    // CRLF stays one line end, not two.
+    EXPECT_EQ(parseError("v 0 0 0\r\nv 1 0 0\r\nv 0 1 x\r\n").rfind("test.obj:3: ", 0), 0u);
+}
+
+// A '\' at the end of a line continues the statement on the next line (OBJ allows it); later
+// lines keep their numbers in messages.
+TEST(ObjLoader, BackslashContinuesTheLine) {
+    MeshData m = parse("v 0 0 0\nv 1 \\\n0 0\nv 0 1 0\nf 1 \\\r\n 2 \\\n 3\n");
+    ASSERT_EQ(m.positions.size(), 3u);
+    EXPECT_EQ(m.positions[1], Point3f(1, 0, 0));
+    ASSERT_EQ(m.faces.size(), 1u);
+    EXPECT_EQ(m.faces[0], (Tri{0, 1, 2}));
+    std::string error = parseError("v 0 0 \\\n0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
+    EXPECT_EQ(error.rfind("test.obj:5: ", 0), 0u) << error;
+}
+
+// Prose (or points and lines only) has no triangles: the loader says so instead of an empty mesh.
+TEST(ObjLoaderNoTriangles, FileWithoutFacesIsAnErrorNamingIt) {
+    char name[] = "/tmp/nori-prose-XXXXXX";
+    int fd = mkstemp(name);
+    ASSERT_GE(fd, 0);
+    const std::string prose = "This is a letter, not a mesh.\nIt has words and no faces.\n";
+    ASSERT_EQ(write(fd, prose.data(), prose.size()), ssize_t(prose.size()));
+    close(fd);
+    std::string error = errorOf([&] { loadObjFile(name); });
+    unlink(name);
+    EXPECT_EQ(error, std::string(name) + ": no triangles (no 'f' statement with 3 or more vertices)");
 }

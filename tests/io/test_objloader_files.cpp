@@ -1,5 +1,6 @@
-// Tests for loadObjFile: plain and gzip files, I/O and decompression errors, and the real
-// meshes in NORI_SHARED_DIR (skipped when that folder is missing).
+/// \file test_objloader_files.cpp
+/// \brief Tests for loadObjFile: plain and gzip files, I/O and decompression errors, and the real
+/// meshes in NORI_SHARED_DIR (skipped when that folder is missing).
 #include <gtest/gtest.h>
 #include <error_of.h>
 #include <temp_dir.h>
@@ -94,7 +95,7 @@ TEST(ObjLoaderFile, DirectoryInsteadOfFile) {
     std::string path = dir.file("sub.obj");
     fs::create_directory(path);
     std::string msg = errorOf([&] { loadObjFile(path); });
-    EXPECT_EQ(msg, path + ": cannot open: Is a directory");
+    EXPECT_EQ(msg, path + ": cannot open: Is a directory, not a mesh file");
 }
 
 TEST(ObjLoaderFile, CorruptGzip) {

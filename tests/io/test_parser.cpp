@@ -1,3 +1,5 @@
+/// \file test_parser.cpp
+/// \brief Tests of the XML scene parser: properties, objects, overrides, locations in messages, and Nori's own scenes.
 #include <gtest/gtest.h>
 #include <nori/parser.h>
 #include <nori/scene.h>
@@ -203,8 +205,8 @@ TEST(Parser, NoriScenesLoadOrFailCleanly) {
             else ADD_FAILURE() << "unexpected error: " << message;
         }
     }
-    EXPECT_GE(loaded, 14);       // pa1/bunny.xml and every pa4/pa5 scene
+    EXPECT_EQ(loaded, 20);       // every scene and test file but those below
     EXPECT_EQ(missingAjax, 5);   // pa2, pa3 and pa5/ajax reference ajax.obj, which is not distributed
-    EXPECT_LE(unknownType, 6);   // at most the <test> roots, until their plugins exist
+    EXPECT_EQ(unknownType, 0);   // every plugin Nori's files name exists
     std::printf("nori-scenes: %d loaded, %d unknown type, %d missing ajax.obj\n", loaded, unknownType, missingAjax);
 }

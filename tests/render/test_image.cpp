@@ -1,4 +1,5 @@
-// Tests of the image pipeline: reconstruction filters, ImageBlock, BlockGenerator and Bitmap I/O.
+/// \file test_image.cpp
+/// \brief Tests of the image pipeline: reconstruction filters, ImageBlock, BlockGenerator and Bitmap I/O.
 #include <gtest/gtest.h>
 #include <nori/bitmap.h>
 #include <nori/block.h>

@@ -1,3 +1,5 @@
+/// \file test_render.cpp
+/// \brief Tests of the block renderer: bit-identical images for any thread count, and the bunny against an Embree reference.
 #include <gtest/gtest.h>
 #include <embree_oracle.h>
 #include <filesystem>

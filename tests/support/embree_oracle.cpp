@@ -1,3 +1,5 @@
+/// \file embree_oracle.cpp
+/// \brief Embree 3 as the reference intersector (tests and benchmark only; the renderer never links it) (implementation).
 #include "embree_oracle.h"
 #include <embree3/rtcore.h>
 #include <chrono>

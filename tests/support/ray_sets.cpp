@@ -1,3 +1,5 @@
+/// \file ray_sets.cpp
+/// \brief Deterministic ray sets shared by the oracle tests and the benchmark (implementation).
 #include "ray_sets.h"
 #include <algorithm>
 #include <pcg_random.hpp>
@@ -16,7 +18,7 @@ Vector3f cosineHemisphere(float u1, float u2) {
 
 /// Surface points (offset towards the viewer) and normals facing the viewer, for primary hits.
 void primaryHits(const std::vector<Ray3f> &primary, const ClosestHitFunction &hitFunction, const MeshTable &table,
-                 std::vector<Point3f> &points, std::vector<Normal3f> &normals) {
+                 std::vector<Point3f> &points, std::vector<Normal3f> &normals, std::vector<uint32_t> *prims = nullptr) {
     for (const Ray3f &ray : primary) {
         Hit hit;
         if (!hitFunction(ray, hit)) continue;
@@ -28,6 +30,7 @@ void primaryHits(const std::vector<Ray3f> &primary, const ClosestHitFunction &hi
         if (n.dot(ray.d) > 0.0f) n = -n;
         points.push_back(offsetRayOrigin(p, offset, n, -ray.d));
         normals.push_back(n);
+        if (prims) prims->push_back(hit.prim);
     }
 }
 } // namespace
@@ -109,10 +112,11 @@ std::vector<Ray3f> randomBoxRays(const BoundingBox3f &bbox, size_t count, uint64
 }
 
 std::vector<Ray3f> diffuseRays(const std::vector<Ray3f> &primary, const ClosestHitFunction &hitFunction,
-                               const MeshTable &table, uint64_t seed) {
+                               const MeshTable &table, uint64_t seed, std::vector<uint32_t> *sources) {
     std::vector<Point3f> points;
     std::vector<Normal3f> normals;
-    primaryHits(primary, hitFunction, table, points, normals);
+    if (sources) sources->clear();
+    primaryHits(primary, hitFunction, table, points, normals, sources);
     pcg32 rng(seed);
     std::vector<Ray3f> rays;
     rays.reserve(points.size());
@@ -125,10 +129,11 @@ std::vector<Ray3f> diffuseRays(const std::vector<Ray3f> &primary, const ClosestH
 }
 
 std::vector<Ray3f> lightShadowRays(const std::vector<Ray3f> &primary, const ClosestHitFunction &hitFunction,
-                                   const MeshTable &table, const Point3f &light) {
+                                   const MeshTable &table, const Point3f &light, std::vector<uint32_t> *sources) {
     std::vector<Point3f> points;
     std::vector<Normal3f> normals;
-    primaryHits(primary, hitFunction, table, points, normals);
+    if (sources) sources->clear();
+    primaryHits(primary, hitFunction, table, points, normals, sources);
     std::vector<Ray3f> rays;
     rays.reserve(points.size());
     for (const Point3f &p : points) rays.emplace_back(p, light - p, 0.0f, 1.0f);

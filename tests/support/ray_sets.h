@@ -36,11 +36,13 @@ std::vector<Ray3f> cameraRays(const Camera &camera, int spp, uint64_t seed);
 /// them are segments (maxt = 1), half are infinite rays.
 std::vector<Ray3f> randomBoxRays(const BoundingBox3f &bbox, size_t count, uint64_t seed);
 /// \brief One cosine-weighted bounce ray (about the normal facing the ray) from each hit of \p primary.
+/// \p sources, when given, receives the global triangle each ray leaves.
 std::vector<Ray3f> diffuseRays(const std::vector<Ray3f> &primary, const ClosestHitFunction &hitFunction,
-                               const MeshTable &table, uint64_t seed);
-/// \brief Segments (maxt = 1) from each hit of \p primary towards \p light.
+                               const MeshTable &table, uint64_t seed, std::vector<uint32_t> *sources = nullptr);
+/// \brief Segments (maxt = 1) from each hit of \p primary towards \p light; \p sources as above.
 std::vector<Ray3f> lightShadowRays(const std::vector<Ray3f> &primary, const ClosestHitFunction &hitFunction,
-                                   const MeshTable &table, const Point3f &light);
+                                   const MeshTable &table, const Point3f &light,
+                                   std::vector<uint32_t> *sources = nullptr);
 /// \brief Segments (maxt = 1) between random pairs of the surface points hit by \p primary.
 std::vector<Ray3f> surfaceShadowRays(const std::vector<Ray3f> &primary, const ClosestHitFunction &hitFunction,
                                      const MeshTable &table, size_t count, uint64_t seed);

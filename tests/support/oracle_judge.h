@@ -1,0 +1,59 @@
+/// \file oracle_judge.h
+/// \brief Explains a disagreement between two closest-hit answers for one ray (an accelerator
+/// under test and Embree robust): the rule of the oracle tests, shared with nori-bench.
+///
+/// Per ray (for any-hit queries, the closest hits behind the two answers are judged):
+///  * match:  same hit/miss; when both hit, the same triangle and both hit points within eps
+///            of it (t may differ by more for a grazing ray: rounding across the plane is
+///            amplified by 1 / sin(angle), and for a hit much nearer than the origin's
+///            magnitude, rounding of the origin dominates t).
+///  * tie:    both hit different triangles and each hit point lies within eps of the other's
+///            triangle (duplicated / back-to-back triangles, hits on a shared edge or vertex,
+///            crossing triangles): both answers are the closest hit up to rounding.
+///  * edge:   the answers differ and the ray passes within eps of the boundary of the nearer
+///            of the two hit triangles (for a hit/miss pair: of the triangle that was hit), so
+///            moving the ray by eps would flip that hit.
+///  * range:  the answers differ and the nearer hit's t lies within eps of ray.mint or ray.maxt.
+///  * oracle: the first answer (the accelerator's) is the exact one and the second (the oracle's)
+///            is not, decided in double precision on the triangles the two answers name: e.g. a
+///            hit on a huge triangle that Embree's float barycentrics put 1.4e-4 across the
+///            diagonal of a 2000-unit quad (only the first answer can be excused this way).
+///  * anything else is unexplained.
+/// eps = 2^-17 (about 64 float ulps) of the problem's scale: the largest coordinate magnitude
+/// of the ray origin, the hit points and t |d|. All geometry is evaluated in double.
+#pragma once
+
+#include <nori/accel.h>
+#include <vector>
+
+namespace nori {
+
+/// \brief The verdicts, in the order of their counters.
+enum Verdict { Match, Tie, Edge, Range, OracleError, Unexplained, VerdictCount };
+/// \brief "match", "tie", "edge", "range", "oracle", "UNEXPLAINED".
+const char *verdictName(int verdict);
+
+/// \brief Applies the rule of the file comment over one global triangle numbering.
+class OracleJudge {
+public:
+    explicit OracleJudge(const std::vector<const Mesh *> &meshes);
+
+    /// \brief Verdict for \p ray answered by (hitA, a), the accelerator under test, and (hitB, b),
+    /// the oracle; symmetric in the two answers except for OracleError.
+    Verdict judge(const Ray3f &ray, bool hitA, const Hit &a, bool hitB, const Hit &b) const;
+    /// \brief eps of the rule for these answers (exposed for tests and reports).
+    double epsilon(const Ray3f &ray, bool hitA, const Hit &a, bool hitB, const Hit &b) const;
+
+private:
+    Eigen::Vector3d corner(uint32_t prim, int k) const;
+    bool rayPassesEdge(const Ray3f &ray, const Hit &h, double eps) const;
+    /// Exact (double) intersection of the ray's segment with triangle \p prim: t on its plane and
+    /// the smallest signed distance of that point from the triangle's edges (negative: outside).
+    bool exactOnPlane(const Ray3f &ray, uint32_t prim, double &t, double &inside) const;
+    bool oracleIsWrong(const Ray3f &ray, bool hitA, const Hit &a, bool hitB, const Hit &b, double eps) const;
+
+    std::vector<const Mesh *> m_meshes;
+    std::vector<uint32_t> m_offsets{0};
+};
+
+} // namespace nori
