@@ -162,8 +162,8 @@ inline float signedFloat(double x) {
 /// other lanes keep \p t. The differences of floats are exact in double (up to a relative 2^-53
 /// when their exponents are more than 29 apart), so the result is t of the exact triangle and
 /// ray up to a few double roundings amplified by the triangle's shape and the ray's grazing
-/// angle: far below float precision. A NaN (ray parallel to the plane in double) is no hit.
-/// Rare and out of line: taken where the float t's error estimate exceeds its tolerance.
+/// angle: far below float precision. Rare and out of line: taken where the float t's error
+/// estimate exceeds its tolerance.
 template <int L>
 [[gnu::noinline, gnu::cold]] VFloat<L> exactPlaneT(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n,
                                                     uint32_t i, VFloat<L> t) {
@@ -184,7 +184,32 @@ template <int L>
                      nz = e1[0] * e2[1] - e1[1] * e2[0];
         const double num = nx * w[0] + ny * w[1] + nz * w[2];
         const double den = nx * double(r.d[0]) + ny * double(r.d[1]) + nz * double(r.d[2]);
-        out[j] = den != 0.0 ? signedFloat(num / den) : std::numeric_limits<float>::quiet_NaN();
+        if (den == 0.0) continue;  // the ray lies in the plane: the float t stays (see below)
+        const double te = num / den;
+        // The float edge test let the lane through (Woop et al.'s decision, kept). Where the
+        // exact crossing lies off the triangle (a barycentric coordinate below -2^-24, about
+        // the rounding of this double computation on a sliver), i.e. for a ray within the
+        // edge test's rounding of an edge at a grazing angle or on a needle whose plane is
+        // ill-conditioned, the float t stays: it is consistent with the edge test (a convex
+        // combination of the corners' z). Either way the hit point lies on its triangle up to
+        // rounding, so every accelerator holding the triangle finds the same closest hit.
+        const double x[3] = {te * r.d[0] - w[0], te * r.d[1] - w[1], te * r.d[2] - w[2]};  // crossing - p0
+        const double tol = 0x1p-24 * (nx * nx + ny * ny + nz * nz);
+        bool inside = true;
+        for (int k = 0; k < 3 && inside; ++k) {
+            // Edge k from corner k to corner k + 1, relative to p0.
+            double a[3], e[3], q[3];
+            for (int c = 0; c < 3; ++c) {
+                a[c] = k == 0 ? 0.0 : k == 1 ? e1[c] : e2[c];
+                const double bc = k == 0 ? e1[c] : k == 1 ? e2[c] : 0.0;
+                e[c] = bc - a[c];
+                q[c] = x[c] - a[c];
+            }
+            // (e x q).n = |n|^2 times the barycentric coordinate of the corner opposite edge k.
+            const double side = (e[1] * q[2] - e[2] * q[1]) * nx + (e[2] * q[0] - e[0] * q[2]) * ny + (e[0] * q[1] - e[1] * q[0]) * nz;
+            inside = side >= -tol;
+        }
+        if (inside) out[j] = signedFloat(te);
     }
     return VFloat<L>::loadu(out);
 }
