@@ -7,24 +7,12 @@
 #include <nori/scene.h>
 #include <nori/statistical_test.h>
 #include <charconv>
+#include <nori/running_statistics.h>
 #include <pcg_random.hpp>
 
 namespace nori {
 
 namespace {
-
-/// Running mean and variance in one pass (Welford 1962).
-struct RunningStatistics {
-    uint64_t n = 0;
-    double mean = 0.0, m2 = 0.0;
-    void add(double x) {
-        ++n;
-        double delta = x - mean;
-        mean += delta / double(n);
-        m2 += delta * (x - mean);
-    }
-    double variance() const { return n > 1 ? m2 / double(n - 1) : 0.0; }
-};
 
 /// Numbers separated by commas and/or whitespace (Nori's `angles` and `references`).
 std::vector<double> parseNumberList(const PropertyList &props, const std::string &name) {
@@ -111,7 +99,7 @@ public:
         const double level = sidakCorrection(m_significanceLevel, int(m_references.size()));
         int passed = 0, total = 0;
         auto conclude = [&](const RunningStatistics &stats, double reference) {
-            HypothesisResult result = tTest(stats.mean, stats.variance(), stats.n, reference, level);
+            HypothesisResult result = tTest(stats.mean(), stats.variance(), stats.count(), reference, level);
             std::fputs(result.report.c_str(), out);
             passed += result.accepted;
             ++total;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nori/parser.h>
+#include <nori/running_statistics.h>
 #include <nori/sampler.h>
 #include <nori/scene.h>
 #include <temp_dir.h>
@@ -60,20 +61,8 @@ inline std::unique_ptr<Scene> loadSceneText(const TempDir &dir, const std::strin
     return loadScene(dir.write(name, xml));
 }
 
-/// \brief Running mean and variance (Welford).
-struct Estimate {
-    size_t n = 0;
-    double mean = 0.0, m2 = 0.0;
-    void add(double x) {
-        ++n;
-        double delta = x - mean;
-        mean += delta / double(n);
-        m2 += delta * (x - mean);
-    }
-    double variance() const { return n > 1 ? m2 / double(n - 1) : 0.0; }
-    /// \brief Standard error of the mean.
-    double stderror() const { return std::sqrt(variance() / double(n)); }
-};
+/// \brief Running mean and variance of the scene estimator's samples.
+using Estimate = RunningStatistics;
 
 /// \brief Nori's scene estimator: \p count camera rays through uniformly random film positions,
 /// luminance of weight * Li. \p visit (optional) sees every ray and value.

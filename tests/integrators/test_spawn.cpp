@@ -204,9 +204,9 @@ TEST_P(UnderRoof, AmbientOcclusionMatchesFormFactor) {
     const double reference = 1.0 - 4.0 * cornerFormFactor(1.0, 1.0);
     kit::Estimate e = kit::estimateScene(*scene, RoofCameraRays, 3);
     const double sigma = std::sqrt(reference * (1.0 - reference) / (256.0 * RoofCameraRays));
-    std::printf("point under a roof (%s, %s): AO = %.5f, reference %.5f, sigma %.1e\n", rc.name, accel, e.mean, reference,
+    std::printf("point under a roof (%s, %s): AO = %.5f, reference %.5f, sigma %.1e\n", rc.name, accel, e.mean(), reference,
                 sigma);
-    EXPECT_NEAR(e.mean, reference, 5.0 * sigma);
+    EXPECT_NEAR(e.mean(), reference, 5.0 * sigma);
 }
 
 const RoofCase RoofAtOrigin{"origin", Point3f(0, 0, 0), 1.0f};
@@ -228,9 +228,9 @@ TEST(Spawn, UnderRoofControlFails) {
     const double reference = 1.0 - 4.0 * cornerFormFactor(1.0, 1.0);
     kit::Estimate e = kit::estimateScene(*scene, RoofCameraRays, 3);
     const double sigma = std::sqrt(reference * (1.0 - reference) / (256.0 * RoofCameraRays));
-    std::printf("control: legacy offset under the roof: AO = %.5f, reference %.5f (%.0f sigma off)\n", e.mean, reference,
-                std::abs(e.mean - reference) / sigma);
-    EXPECT_GT(std::abs(e.mean - reference), 5.0 * sigma);
+    std::printf("control: legacy offset under the roof: AO = %.5f, reference %.5f (%.0f sigma off)\n", e.mean(), reference,
+                std::abs(e.mean() - reference) / sigma);
+    EXPECT_GT(std::abs(e.mean() - reference), 5.0 * sigma);
 }
 
 } // namespace
