@@ -63,6 +63,9 @@ void OptionParser::declare(CliApp &cli, BenchOptions &o) {
         app.add_flag("--default-only", o.defaultOnly, "only the octree with its own default settings")
             ->group(ContenderGroup);
     std::vector<CLI::Option *> lists = {
+        addList(app, "--build-rules", "octree build rules: sah, count, seed (default: the octree's own)",
+                oneOf({"sah", "count", "seed"}),
+                [&o](const std::vector<std::string> &items) { o.buildRules = items; }),
         addList(app, "--depths", "octree maxDepth values (default 20,25,30)", integerIn(0, 64),
                 [&o](const std::vector<std::string> &items) { o.depths = toInts(items); }),
         addList(app, "--leaf-sizes", "octree leafSize values (default 10)", integerIn(1, 1 << 20),

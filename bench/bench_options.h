@@ -17,6 +17,7 @@ struct BenchOptions {
     std::vector<std::string> meshes;  ///< --mesh (repeatable)
     std::string scene;                ///< --scene
     int width = 512, height = 512, spp = 4;
+    std::vector<std::string> buildRules;   ///< empty: the octree's default rule
     std::vector<int> depths{20, 25, 30};
     std::vector<int> leafSizes{10};
     std::vector<std::string> overlaps{"exact", "bbox"};

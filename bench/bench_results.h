@@ -25,6 +25,7 @@ struct SetTiming {
 
 /// \brief One octree configuration (the properties nori-bench sets).
 struct OctreeConfig {
+    std::string buildRule;    ///< empty: the octree's own default rule
     int maxDepth = 0;
     int leafSize = 0;
     std::string overlap, traversal, intersector;
@@ -33,8 +34,8 @@ struct OctreeConfig {
 
     std::string label() const;
     bool sameSettings(const OctreeConfig &o) const {
-        return maxDepth == o.maxDepth && leafSize == o.leafSize && overlap == o.overlap &&
-               traversal == o.traversal && intersector == o.intersector;
+        return buildRule == o.buildRule && maxDepth == o.maxDepth && leafSize == o.leafSize &&
+               overlap == o.overlap && traversal == o.traversal && intersector == o.intersector;
     }
 };
 

@@ -104,6 +104,8 @@ def check_mesh(m, where):
             fail(w, "'default' is not a boolean")
         number(run, "build_ms", w, 0)
         if accel == "octree":
+            if "buildRule" in run:
+                string(run, "buildRule", w, ("sah", "count", "seed"))
             number(run, "maxDepth", w, 0, integral=True)
             number(run, "leafSize", w, 1, integral=True)
             string(run, "overlap", w, ("exact", "bbox"))

@@ -52,6 +52,7 @@ Json runJson(const RunResult &r) {
     j["accel"] = r.accel;
     j["default"] = r.hasConfig && r.config.isDefault;
     if (r.hasConfig) {
+        if (!r.config.buildRule.empty()) j["buildRule"] = r.config.buildRule;
         j["maxDepth"] = r.config.maxDepth;
         j["leafSize"] = r.config.leafSize;
         j["overlap"] = r.config.overlap;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <tuple>
 
 namespace nori::bench {
 
@@ -34,13 +35,14 @@ std::string setCell(const SetTiming &s) {
                        s.hasAccuracy ? fmt::format("[{}]", s.accuracy.mismatches) : std::string());
 }
 
-/// Table 1 for the octree runs with one overlap and leaf size.
-std::string table1(const MeshResult &m, const std::string &overlap, int leafSize) {
+/// Table 1 for the octree runs with one build rule, overlap and leaf size.
+std::string table1(const MeshResult &m, const std::string &rule, const std::string &overlap, int leafSize) {
     std::vector<const RunResult *> runs;
     std::set<int> depthSet;
     std::vector<std::string> variants;  // traversal/intersector, in run order
     for (const RunResult &r : m.runs) {
-        if (r.accel != "octree" || !r.hasConfig || r.config.overlap != overlap || r.config.leafSize != leafSize)
+        if (r.accel != "octree" || !r.hasConfig || r.config.buildRule != rule || r.config.overlap != overlap ||
+            r.config.leafSize != leafSize)
             continue;
         runs.push_back(&r);
         depthSet.insert(r.config.maxDepth);
@@ -61,7 +63,8 @@ std::string table1(const MeshResult &m, const std::string &overlap, int leafSize
         return nullptr;
     };
 
-    std::string s = fmt::format("### Table 1: overlap `{}`, leafSize {}\n\n", overlap, leafSize);
+    std::string s = fmt::format("### Table 1: {}overlap `{}`, leafSize {}\n\n",
+                                rule.empty() ? "" : fmt::format("build rule `{}`, ", rule), overlap, leafSize);
     std::vector<std::string> header{"maxDepth"};
     for (int d : depths) header.push_back(fmt::format("{}", d));
     header.push_back("Embree");
@@ -128,13 +131,13 @@ std::string MarkdownWriter::format(const std::vector<MeshResult> &results, const
                          m.embree.sets[1].rays, m.embree.sets[2].rays, m.repeats);
         for (const std::string &n : m.notes) s += "- Note: " + n + "\n";
         if (!m.notes.empty()) s += "\n";
-        std::vector<std::pair<std::string, int>> groups;
+        std::vector<std::tuple<std::string, std::string, int>> groups;
         for (const RunResult &r : m.runs) {
             if (r.accel != "octree" || !r.hasConfig) continue;
-            std::pair<std::string, int> g{r.config.overlap, r.config.leafSize};
+            std::tuple<std::string, std::string, int> g{r.config.buildRule, r.config.overlap, r.config.leafSize};
             if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
         }
-        for (const auto &g : groups) s += table1(m, g.first, g.second);
+        for (const auto &[rule, overlap, leaf] : groups) s += table1(m, rule, overlap, leaf);
         if (groups.empty()) s += "_No octree runs (the octree accel is not in this build)._\n\n";
         s += allRuns(m);
     }

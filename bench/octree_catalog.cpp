@@ -9,7 +9,8 @@ namespace nori::bench {
 
 std::string OctreeConfig::label() const {
     if (useDefaults && maxDepth == 0) return "octree (defaults)";
-    return fmt::format("d={} l={} {} {} {}", maxDepth, leafSize, overlap, traversal, intersector);
+    return fmt::format("{}d={} l={} {} {} {}", buildRule.empty() ? "" : buildRule + " ", maxDepth, leafSize, overlap,
+                       traversal, intersector);
 }
 
 bool OctreeCatalog::available() { return NoriObjectFactory::isRegistered(NoriObject::EAccel, "octree"); }
@@ -18,6 +19,7 @@ std::unique_ptr<Accel> OctreeCatalog::create(const OctreeConfig &config) {
     PropertyList props;
     props.setLocation("<nori-bench>");
     if (!config.useDefaults) {
+        if (!config.buildRule.empty()) props.setString("buildRule", config.buildRule);
         props.setInteger("maxDepth", config.maxDepth);
         props.setInteger("leafSize", config.leafSize);
         props.setString("overlap", config.overlap);
@@ -52,6 +54,7 @@ OctreeConfig OctreeCatalog::probeDefaults() {
         std::regex re(std::string(key) + R"(\s*[=:]\s*\"?([A-Za-z0-9_.+-]+))", std::regex::icase);
         return std::regex_search(text, m, re) ? m[1].str() : std::string();
     };
+    d.buildRule = find("buildRule");
     std::string depth = find("maxDepth"), leaf = find("leafSize");
     d.maxDepth = depth.empty() ? 0 : std::atoi(depth.c_str());
     d.leafSize = leaf.empty() ? 0 : std::atoi(leaf.c_str());
@@ -98,7 +101,13 @@ OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
         return false;
     };
     std::vector<int> depths, leaves;
-    std::vector<std::string> overlaps, intersectors;
+    std::vector<std::string> rules, overlaps, intersectors;
+    for (const std::string &b : options.buildRules.empty() ? std::vector<std::string>{m_defaults.buildRule}
+                                                            : options.buildRules) {
+        OctreeConfig c = probe;
+        c.buildRule = b;
+        if (check("--build-rules", c, fmt::format("buildRule {}", b))) rules.push_back(b);
+    }
     for (int d : options.depths) {
         OctreeConfig c = probe;
         c.maxDepth = d;
@@ -120,15 +129,17 @@ OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
         if (check("--intersectors", c, fmt::format("intersector {}", i))) intersectors.push_back(i);
     }
 
-    // Order: overlap, leaf size, depth, traversal, intersector (the Markdown table reads
-    // like the seed's: one column per depth).
+    // Order: build rule, overlap, leaf size, depth, traversal, intersector (the Markdown table
+    // reads like the seed's: one column per depth).
     bool haveDefault = false;
+    for (const std::string &b : rules)
     for (const std::string &o : overlaps)
         for (int leaf : leaves)
             for (int depth : depths)
                 for (const std::string &t : m_traversals)
                     for (const std::string &i : intersectors) {
                         OctreeConfig c;
+                        c.buildRule = b;
                         c.maxDepth = depth;
                         c.leafSize = leaf;
                         c.overlap = o;

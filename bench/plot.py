@@ -168,7 +168,8 @@ def speed_vs_accuracy(mesh, out):
 def depth_chart(mesh, out):
     runs = octree_runs(mesh)
     depths = sorted(set(r["maxDepth"] for r in runs))
-    overlaps = ordered(r["overlap"] for r in runs)
+    # One line per build rule and overlap (and leaf size, when several were run).
+    kinds = ordered((r.get("buildRule", ""), r["overlap"]) for r in runs)
     leaves = ordered(r["leafSize"] for r in runs)
     traversals = ordered(r["traversal"] for r in runs)
     intersectors = ordered(r["intersector"] for r in runs)
@@ -177,16 +178,17 @@ def depth_chart(mesh, out):
     fig, axes = plt.subplots(1, 3, figsize=(16, 6.2))
     e = mesh["embree"]
 
-    def pick(overlap, leaf, depth, traversal=None, intersector=None):
-        c = [r for r in runs if r["overlap"] == overlap and r["leafSize"] == leaf and r["maxDepth"] == depth
+    def pick(kind, leaf, depth, traversal=None, intersector=None):
+        c = [r for r in runs if (r.get("buildRule", ""), r["overlap"]) == kind and r["leafSize"] == leaf
+             and r["maxDepth"] == depth
              and (traversal is None or r["traversal"] == traversal)
              and (intersector is None or r["intersector"] == intersector)]
         return c[0] if c else None
 
-    for oi, overlap in enumerate(overlaps):
+    for oi, kind in enumerate(kinds):
         for li, leaf in enumerate(leaves):
-            label = f"overlap {overlap}" + (f", leaf {leaf}" if len(leaves) > 1 else "")
-            pts = [(d, pick(overlap, leaf, d)) for d in depths]
+            label = (f"{kind[0]}, " if kind[0] else "") + f"overlap {kind[1]}" + (f", leaf {leaf}" if len(leaves) > 1 else "")
+            pts = [(d, pick(kind, leaf, d)) for d in depths]
             pts = [(d, r) for d, r in pts if r]
             if not pts:
                 continue
@@ -195,7 +197,7 @@ def depth_chart(mesh, out):
             axes[1].plot([d for d, _ in pts], [r["bytes"] / 2**20 for _, r in pts], label=label, **style)
             for ti, t in enumerate(traversals):
                 x = intersectors[0]
-                tp = [(d, pick(overlap, leaf, d, t, x)) for d in depths]
+                tp = [(d, pick(kind, leaf, d, t, x)) for d in depths]
                 tp = [(d, r) for d, r in tp if r]
                 if not tp:
                     continue

@@ -20,6 +20,22 @@ OctreeAccel::Overlap parseOverlap(const PropertyList &props) {
     props.fail("overlap", fmt::format("unknown overlap test '{}' (allowed: bbox, exact)", name));
 }
 
+OctreeAccel::BuildRule parseBuildRule(const PropertyList &props) {
+    std::string name = props.getString("buildRule", "sah");
+    if (name == "sah") return OctreeAccel::BuildRule::Sah;
+    if (name == "count") return OctreeAccel::BuildRule::Count;
+    if (name == "seed") return OctreeAccel::BuildRule::Seed;
+    props.fail("buildRule", fmt::format("unknown build rule '{}' (allowed: sah, count, seed)", name));
+}
+
+const char *buildRuleName(OctreeAccel::BuildRule r) {
+    switch (r) {
+    case OctreeAccel::BuildRule::Count: return "count";
+    case OctreeAccel::BuildRule::Seed: return "seed";
+    default: return "sah";
+    }
+}
+
 const char *traversalName(OctreeAccel::Traversal t) {
     switch (t) {
     case OctreeAccel::Traversal::Seed: return "seed";
@@ -30,14 +46,17 @@ const char *traversalName(OctreeAccel::Traversal t) {
 } // namespace
 
 OctreeAccel::OctreeAccel(const PropertyList &props) {
-    m_maxDepth = props.getInteger("maxDepth", 16);
+    m_buildRule = parseBuildRule(props);
+    // `sah`: the cost model decides where to stop; maxDepth only bounds the tree (deep enough
+    // for a small object on a ground 10^4 times its size), and leafSize 8 spares the cost
+    // model the smallest nodes. `count` keeps issue 3's measured defaults (16, 512: leaves of
+    // 16-triangle chunks with their own boxes are cheap to test). `seed` has no defaults of
+    // its own in the seed report beyond its depth rule; it uses count's.
+    const bool sah = m_buildRule == BuildRule::Sah;
+    m_maxDepth = props.getInteger("maxDepth", sah ? 24 : 16);
     if (m_maxDepth < 0 || m_maxDepth > kMaxDepthLimit)
         props.fail("maxDepth", fmt::format("maxDepth must be in [0, {}], got {}", kMaxDepthLimit, m_maxDepth));
-    // Measured on the 871k dragon (single thread, against Embree): leaves are tested in
-    // 16-triangle chunks, each with its own box (sixteen boxes per SIMD test), so large leaves
-    // are cheap, while small ones cost nodes and duplicated references (bench table in the
-    // report: 64 -> 512 gains 10-20 % and halves the references).
-    m_leafSize = props.getInteger("leafSize", 512);
+    m_leafSize = props.getInteger("leafSize", sah ? 8 : 512);
     if (m_leafSize < 1) props.fail("leafSize", fmt::format("leafSize must be at least 1, got {}", m_leafSize));
     m_overlap = parseOverlap(props);
     m_traversal = parseTraversal(props);
@@ -59,25 +78,30 @@ bool OctreeAccel::occluded(const Ray3f &ray) const {
     return m_traversal == Traversal::Simd ? occludedSimd(ray) : occludedSorted(ray);
 }
 
-size_t OctreeAccel::bytes() const { return m_nodes.capacity() * sizeof(OctreeNode) + m_triangles.bytes(); }
+size_t OctreeAccel::bytes() const {
+    return m_nodes.capacity() * sizeof(OctreeNode) + m_keptOffset.capacity() * sizeof(uint32_t) + m_triangles.bytes();
+}
 
 std::vector<AccelStat> OctreeAccel::statistics() const {
     std::vector<AccelStat> stats = Accel::statistics();
     size_t filled = m_stats.leafNodes - m_stats.emptyLeaves;
+    // Per non-empty leaf: the references in leaves (kept lists are not leaves).
     stats.push_back({"internal_nodes", double(m_stats.internalNodes), true});
     stats.push_back({"leaf_nodes", double(m_stats.leafNodes), true});
     stats.push_back({"empty_leaves", double(m_stats.emptyLeaves), true});
-    stats.push_back({"avg_tris_per_leaf", filled ? double(m_stats.refs) / double(filled) : 0.0, false});
+    stats.push_back({"avg_tris_per_leaf", filled ? double(m_stats.refs - m_stats.keptRefs) / double(filled) : 0.0, false});
     stats.push_back({"max_depth_reached", double(m_stats.maxDepthReached), true});
     stats.push_back({"triangle_refs", double(m_stats.refs), true});
+    stats.push_back({"kept_refs", double(m_stats.keptRefs), true});
+    stats.push_back({"kept_nodes", double(m_stats.keptNodes), true});
     stats.push_back({"bytes", double(bytes()), true});
     return stats;
 }
 
 std::string OctreeAccel::toString() const {
-    return fmt::format("OctreeAccel[maxDepth={}, leafSize={}, overlap={}, traversal={}, intersector={}]", m_maxDepth,
-                       m_leafSize, m_overlap == Overlap::Exact ? "exact" : "bbox", traversalName(m_traversal),
-                       intersectorName(m_intersector));
+    return fmt::format("OctreeAccel[buildRule={}, maxDepth={}, leafSize={}, overlap={}, traversal={}, intersector={}]",
+                       buildRuleName(m_buildRule), m_maxDepth, m_leafSize, m_overlap == Overlap::Exact ? "exact" : "bbox",
+                       traversalName(m_traversal), intersectorName(m_intersector));
 }
 
 NORI_REGISTER_CLASS(OctreeAccel, "octree", EAccel);

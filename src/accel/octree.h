@@ -10,30 +10,59 @@
 namespace nori {
 
 /// \brief One inner node: the tight boxes of its eight children (each the union of its
-/// triangles' bounding boxes clipped to the child's cell) and where each child lives.
+/// triangles' bounds, clipped to the child's cell) and where each child lives. The children's
+/// cells come from three successive midpoint bisections of the node's cell (its Pattern).
 /// 256 bytes, one 64-byte line per axis plus one for the child references.
 struct alignas(64) OctreeNode {
     /// box[axis][c] is the lower bound of child c, box[axis][8 + c] its upper bound, so one
     /// 16-lane load per axis fetches both slabs of all eight children. An empty child has
     /// lower = +inf and upper = -inf: no ray ever enters it.
     float box[3][16];
-    /// Inner child: index into the node array (count[c] == 0). Leaf: word offset of its block
-    /// in the TriangleStore (count[c] > 0 triangles).
+    /// Leaf child: word offset of its block in the TriangleStore, count[c] = its triangles
+    /// (0 < count < kInner). Inner child: index into the node array, count[c] = innerRef(...).
+    /// Empty child: count[c] = 0.
     uint32_t child[8];
     uint32_t count[8];
+
+    /// \brief The bisections that make a node's child cells: first along axis[0], then each
+    /// half along axis[1], then each quarter along axis[2]. Child slot c lies on the upper side
+    /// of bisection l when bit 2 - l of c is set; (0, 1, 2) are the classic octants. Children
+    /// visited in the order j ^ o, j = 0..7, where bit 2 - l of o is the sign of the ray's
+    /// direction along axis[l], come front to back (Revelles et al. 2000's observation, which
+    /// holds for any nesting of midpoint bisections).
+    struct Pattern {
+        uint8_t axis[3];
+        uint32_t code() const { return uint32_t(axis[0]) | uint32_t(axis[1]) << 2 | uint32_t(axis[2]) << 4; }
+        static Pattern fromCode(uint32_t code) {
+            return {{uint8_t(code & 3u), uint8_t((code >> 2) & 3u), uint8_t((code >> 4) & 3u)}};
+        }
+    };
+
+    /// A reference to an inner node (in its parent's count, or the root's): kInner, the node's
+    /// pattern code in bits 25-30, and the number of large triangles the node keeps itself
+    /// (tested before its children; OctreeAccel::m_keptOffset says where they are).
+    static constexpr uint32_t kInner = 0x80000000u;
+    static constexpr int kPatternShift = 25;
+    static constexpr uint32_t kKeptMask = (1u << kPatternShift) - 1u;
+    static uint32_t innerRef(const Pattern &p, uint32_t kept) { return kInner | p.code() << kPatternShift | kept; }
 };
 static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
 
-/// \brief Octree accelerator. Properties (defaults measured on the 871k dragon): `maxDepth`
-/// (16), `leafSize` (512: a node with fewer triangles is a leaf), `overlap` (bbox | exact*),
-/// `traversal` (seed | sorted | simd*), `intersector` (mt | watertight*).
+/// \brief Octree accelerator. Properties: `buildRule` (sah* | count | seed), `maxDepth`,
+/// `leafSize` (a node with fewer triangles is a leaf), `overlap` (bbox | exact*), `traversal`
+/// (seed | sorted | simd*), `intersector` (mt | watertight*).
 ///
-/// Build (octree_build.cpp): midpoint split of the cell, triangles classified against the
-/// midplanes by their bounding boxes, the separating-axis test only for those that straddle;
-/// children built as parallel TBB tasks; subdivision stops at maxDepth, below leafSize, and
-/// when a split makes no progress or would exceed the reference budget (at most 8 references
-/// per triangle for any input). Memory: 256-byte inner nodes only, leaves live in the
-/// TriangleStore (40 bytes per reference plus 24 bytes per 16-triangle chunk).
+/// Build (octree_build.cpp): every cell splits at its midpoint; triangles are classified
+/// against the midplanes by their bounding boxes, the separating-axis test only for those that
+/// straddle; children are built as parallel TBB tasks. The `sah` rule (default) splits only
+/// the axes of a cell that are long enough, so cells stay near-cubic (2, 4 or 8 children),
+/// keeps triangles that would be copied into many children in the node itself, and makes a
+/// leaf where a surface-area cost model says splitting no longer pays. `count` is the
+/// octree of issue 3 (eight children always, leaf below leafSize); `seed` is the seed
+/// report's rule (each later sibling counts one level deeper). Every rule stops at maxDepth
+/// and at a budget of 8 triangle references per triangle for any input. Memory: 256-byte inner
+/// nodes plus one word per node; leaves and kept lists live in the TriangleStore (40 bytes per
+/// reference plus 24 bytes per 16-triangle chunk).
 ///
 /// Traversal (octree_traversal.cpp): every traversal culls a child whose entry distance lies
 /// beyond the closest hit so far and never stops early (except `seed`), so the first-found
@@ -46,6 +75,12 @@ public:
         Seed,    ///< children by distance to their box, stop at the first subtree that hits (inexact)
         Sorted,  ///< exact: children sorted by entry t, skip those beyond the closest hit
         Simd,    ///< exact: all eight boxes in one AVX-512 slab test, visited in the ray's octant order
+    };
+    /// \brief How the tree is subdivided.
+    enum class BuildRule {
+        Sah,    ///< near-cubic cells, large triangles kept high, leaf-or-split by a cost model
+        Count,  ///< eight children always, leaf below leafSize (the octree of issue 3)
+        Seed,   ///< as Count, but child k of a node counts k + 1 levels deeper (the seed's `++ctr`)
     };
     /// \brief Which triangles a child cell receives.
     enum class Overlap {
@@ -63,6 +98,28 @@ public:
     /// \brief Bytes owned after the build: nodes and precomputed triangle data.
     size_t bytes() const;
     Traversal traversal() const { return m_traversal; }
+    BuildRule buildRule() const { return m_buildRule; }
+
+    /// \brief One inner node as the tests inspect it: where it is, the reference that leads to
+    /// it (OctreeNode::innerRef: pattern and kept count) and its depth in nodes (root 0).
+    struct NodeView {
+        uint32_t index, ref;
+        int depth;
+        const OctreeNode &node;
+    };
+    /// \brief Call \p visit for every inner node, parents before children.
+    template <typename Visit> void forEachNode(Visit visit) const {
+        if (m_nodes.empty()) return;
+        std::vector<std::pair<uint32_t, std::pair<uint32_t, int>>> stack{{0u, {m_rootCount, 0}}};
+        while (!stack.empty()) {
+            auto [index, refDepth] = stack.back();
+            stack.pop_back();
+            const OctreeNode &node = m_nodes[index];
+            visit(NodeView{index, refDepth.first, refDepth.second, node});
+            for (int c = 0; c < 8; ++c)
+                if (node.count[c] & OctreeNode::kInner) stack.push_back({node.child[c], {node.count[c], refDepth.second + 1}});
+        }
+    }
 
     /// \brief Deepest allowed level (the root is level 0); clamped to kMaxDepthLimit.
     static constexpr int kMaxDepthLimit = 32;
@@ -78,22 +135,36 @@ private:
     bool occludedSorted(const Ray3f &ray) const;
     bool intersectSeed(const Ray3f &ray, Hit &hit) const;
 
+
     // Settings.
+    BuildRule m_buildRule;
     int m_maxDepth;
     int m_leafSize;
     Overlap m_overlap;
     Traversal m_traversal;
     Intersector m_intersector;
 
-    // Structure: node 0 is the root (always an inner node).
+    // Structure: node 0 is the root (always an inner node), referenced as (0, m_rootCount).
+    // m_keptOffset holds, per node, the word offset of its kept triangles in m_triangles.
     std::vector<OctreeNode> m_nodes;
+    std::vector<uint32_t> m_keptOffset;
+    uint32_t m_rootCount = 0;
     TriangleStore m_triangles;
 
     // Statistics of the last build.
     struct Stats {
-        size_t internalNodes = 0, leafNodes = 0, emptyLeaves = 0, refs = 0;
+        size_t internalNodes = 0, leafNodes = 0, emptyLeaves = 0, refs = 0, keptRefs = 0, keptNodes = 0;
         int maxDepthReached = 0;
     } m_stats;
 };
+
+#ifdef NORI_OCTREE_COUNTERS
+/// \brief What the simd traversals did, summed over all queries since the last reset (a
+/// measuring build only: -DNORI_OCTREE_COUNTERS; single-threaded use).
+struct OctreeCounters {
+    uint64_t nodes = 0, keptTris = 0, leaves = 0, leafTris = 0;
+};
+extern OctreeCounters g_octreeCounters;
+#endif
 
 } // namespace nori

@@ -1,133 +1,403 @@
 /// \file octree_build.cpp
-/// \brief Octree construction: a parallel recursive split into a temporary tree, then a parallel
-/// flattening into the node array and the triangle store.
-#include "octree.h"
+/// \brief The octree's recursive midpoint subdivision: which axes a cell splits, which child
+/// cells each triangle touches, which triangles stay in the node, and when a cell is a leaf.
+#include "octree_build.h"
 #include "triangle_box.h"
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 #include <algorithm>
-#include <memory>
+#include <cmath>
+#include <optional>
 
-namespace nori {
+namespace nori::octree_build {
 
 namespace {
+
+using Rule = OctreeAccel::BuildRule;
 
 /// Subtrees with more references than this are built as parallel tasks.
 constexpr size_t kParallelRefs = 4096;
 
-/// The leaves of the whole tree hold at most this many references per triangle (see split()).
+/// The whole tree holds at most this many references per triangle (see split()): `count` and
+/// `seed` (which copy a triangle into every cell it touches) and `sah` (which sends triangles
+/// down loose once its budget is spent; 1.5 keeps the bytes per triangle below Embree's).
 constexpr double kRefBudget = 8.0;
+constexpr double kSahRefBudget = 1.5;
 
-/// Read-only inputs of the build.
-struct BuildInput {
-    const std::vector<std::array<Point3f, 3>> &vertices;  ///< corners of every global triangle
-    const std::vector<BoundingBox3f> &bounds;              ///< bounding box of every global triangle
-    int maxDepth;
-    size_t leafSize;
-    bool exact;
+/// Surface-area cost model (Goldsmith & Salmon 1987; MacDonald & Booth 1990): a ray that
+/// enters a box of area A enters a box of area a inside it with probability a / A. The unit is
+/// one inner-node visit (one eight-box slab test and its stack pushes). A sampling profile of
+/// the AVX-512 build (perf, cpu-clock, generated city) put one sixteen-lane triangle chunk at
+/// about three node visits; a sweep of kChunk from 0.5 to 8 moved nori-bench's ratios less
+/// than the machine's noise (bench/README.md).
+struct Cost {
+    static constexpr double kNode = 1.0;        ///< visiting an inner node
+    static constexpr double kChunk = 3.0;       ///< sixteen ray/triangle tests
+    static constexpr double kChunkBoxes = 1.0;  ///< sixteen chunk boxes of a leaf above 16 triangles
+
+    /// Testing a list of n triangles (a leaf or a kept list) once the ray reaches it.
+    static double list(size_t n) {
+        if (n == 0) return 0.0;
+        size_t chunks = (n + 15) / 16;
+        return chunks == 1 ? kChunk
+                           : kChunkBoxes * double((chunks + 15) / 16) + kChunk * double(chunks);
+    }
 };
 
-/// An inner node of the temporary tree. A child is an inner node (inner[c] set), a leaf
-/// (refs[c] non-empty) or empty.
-struct TempNode {
-    BoundingBox3f box[8];  ///< tight boxes
-    std::unique_ptr<TempNode> inner[8];
-    std::vector<uint32_t> refs[8];
-    size_t subtreeNodes = 1;  ///< inner nodes in this subtree, this one included
-    size_t subtreeRefs = 0;   ///< triangle references in the leaves of this subtree
-    size_t subtreeWords = 0;  ///< TriangleStore words of the leaves of this subtree
-};
+double area(const BoundingBox3f &b) {
+    if (!b.isValid()) return 0.0;
+    Vector3f e = b.extents();
+    return 2.0 * (double(e.x()) * e.y() + double(e.y()) * e.z() + double(e.z()) * e.x());
+}
 
-/// Cell of child \p c of \p cell: bit 0/1/2 of c selects the upper half along x/y/z.
-BoundingBox3f childCell(const BoundingBox3f &cell, int c) {
-    Point3f mid = cell.center();
-    BoundingBox3f b;
-    for (int a = 0; a < 3; ++a) {
-        bool upper = (c >> a) & 1;
-        b.min[a] = upper ? mid[a] : cell.min[a];
-        b.max[a] = upper ? cell.max[a] : mid[a];
+/// The `sah` rule splits a cell by three successive midpoint bisections, each of the longest
+/// side of the part being split, so cells stay near-cubic (no side more than twice another,
+/// beyond what the scene's own flatness imposes): a cube gets the octree's eight octants, a
+/// 1000 x 3 x 25 strip eight slabs along its length, and no cell ever becomes a thin slab that
+/// every triangle crosses. Each node still has eight children, so the eight-box test stays
+/// fully used. The other rules split x, y and z once each: the classic octree.
+OctreeNode::Pattern patternFor(Rule rule, const BoundingBox3f &cell) {
+    OctreeNode::Pattern p{{0, 1, 2}};
+    if (rule != Rule::Sah) return p;
+    Vector3f e = cell.extents();
+    for (int level = 0; level < 3; ++level) {
+        int a = e.x() >= e.y() && e.x() >= e.z() ? 0 : (e.y() >= e.z() ? 1 : 2);
+        p.axis[level] = uint8_t(a);
+        e[a] *= 0.5f;
+    }
+    return p;
+}
+
+/// Cell of child slot \p c of \p cell: bit 2 - l of c selects the upper half of bisection l.
+BoundingBox3f cellOf(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c) {
+    BoundingBox3f b = cell;
+    for (int level = 0; level < 3; ++level) {
+        int a = p.axis[level];
+        float mid = 0.5f * (b.min[a] + b.max[a]);
+        if ((c >> (2 - level)) & 1) b.min[a] = mid;
+        else b.max[a] = mid;
     }
     return b;
 }
 
-/// Split \p refs (the triangles touching \p cell, a node at \p depth) into eight children and
-/// recurse. Returns null when the split makes no progress; the caller then keeps a leaf.
-///
-/// Reference budget: the node may hold at most \p budget references in the leaves below it. A
-/// split whose children hold more is refused, and each child inherits the share of the budget
-/// proportional to its references (at least its own count). The root gets kRefBudget times the
-/// triangle count, so no input (needles spanning the box, huge triangles) can make the tree
-/// hold more than kRefBudget references per triangle.
-std::unique_ptr<TempNode> split(const BuildInput &in, const BoundingBox3f &cell, const std::vector<uint32_t> &refs,
-                                int depth, double budget) {
-    const size_t n = refs.size();
-    const Point3f mid = cell.center();
-    BoundingBox3f cells[8];
-    for (int c = 0; c < 8; ++c) cells[c] = childCell(cell, c);
+/// Slot whose cell holds \p point (the upper cell on a plane), by the same arithmetic.
+int slotOf(const BoundingBox3f &cell, const OctreeNode::Pattern &p, const Point3f &point) {
+    BoundingBox3f b = cell;
+    int c = 0;
+    for (int level = 0; level < 3; ++level) {
+        int a = p.axis[level];
+        float mid = 0.5f * (b.min[a] + b.max[a]);
+        bool upper = point[a] >= mid;
+        c = 2 * c + int(upper);
+        if (upper) b.min[a] = mid;
+        else b.max[a] = mid;
+    }
+    return c;
+}
 
-    // Candidate children from the bounding box against the three midplanes (closed: a box
-    // touching a plane goes to both sides), refined by the SAT only for straddling triangles.
-    std::vector<uint8_t> masks(n);
-    auto classify = [&](size_t i) {
-        const BoundingBox3f &b = in.bounds[refs[i]];
-        unsigned mx = (b.min.x() <= mid.x() ? 0x55u : 0u) | (b.max.x() >= mid.x() ? 0xAAu : 0u);
-        unsigned my = (b.min.y() <= mid.y() ? 0x33u : 0u) | (b.max.y() >= mid.y() ? 0xCCu : 0u);
-        unsigned mz = (b.min.z() <= mid.z() ? 0x0Fu : 0u) | (b.max.z() >= mid.z() ? 0xF0u : 0u);
-        unsigned mask = mx & my & mz;
-        // Two candidates (one midplane straddled) with the box inside the cell: the triangle is
-        // connected, reaches both closed sides of the plane and stays in one column of
-        // children, so it touches both; the SAT is needed only otherwise.
-        bool inside = (b.min.array() >= cell.min.array()).all() && (b.max.array() <= cell.max.array()).all();
-        if (in.exact && (mask & (mask - 1)) && !(inside && __builtin_popcount(mask) == 2)) {
-            const auto &v = in.vertices[refs[i]];
-            unsigned kept = 0;
-            for (unsigned m = mask; m; m &= m - 1) {
-                int c = __builtin_ctz(m);
-                if (triangleOverlapsBox(v[0], v[1], v[2], cells[c])) kept |= 1u << c;
+/// The child cells a bounding box touches (closed: touching a plane counts), by a table per
+/// axis: along each axis the eight cells form up to eight slabs, a box covers a run of them,
+/// and range[a][first][last] is the mask of the cells in that run.
+struct Classifier {
+    int planes[3] = {};      ///< interior slab boundaries per axis
+    float plane[3][7] = {};  ///< their positions, increasing
+    uint8_t range[3][8][8] = {};
+
+    /// \p cells: the children of \p cell by \p pattern. Along axis a the slabs are the
+    /// bisections on a: none (one slab), one (two), or nested ones (up to eight).
+    Classifier(const BoundingBox3f &cell, const OctreeNode::Pattern &pattern, const BoundingBox3f cells[8]) {
+        for (int a = 0; a < 3; ++a) {
+            // Slab of each cell along a: its bits at the levels that bisect a.
+            int bisections = 0, slabOf[8] = {};
+            for (int level = 0; level < 3; ++level)
+                if (pattern.axis[level] == a) {
+                    ++bisections;
+                    for (int c = 0; c < 8; ++c) slabOf[c] = 2 * slabOf[c] + ((c >> (2 - level)) & 1);
+                }
+            const int slabs = 1 << bisections;
+            uint8_t slabMask[8] = {};
+            for (int c = 0; c < 8; ++c) {
+                slabMask[slabOf[c]] |= uint8_t(1u << c);
+                if (slabOf[c] > 0) plane[a][slabOf[c] - 1] = cells[c].min[a];
             }
-            if (kept) mask = kept;  // never lose a triangle to rounding
+            planes[a] = slabs - 1;
+            for (int first = 0; first < slabs; ++first) {
+                uint8_t m = 0;
+                for (int last = first; last < slabs; ++last) range[a][first][last] = m |= slabMask[last];
+            }
         }
+        (void)cell;
+    }
+    unsigned mask(const BoundingBox3f &b) const {
+        unsigned m = 0xFFu;
+        for (int a = 0; a < 3; ++a) {
+            int first = 0, last = 0;
+            if (planes[a] == 1) {  // the common case: one bisection of this axis
+                first = plane[a][0] < b.min[a];
+                last = plane[a][0] <= b.max[a];
+            } else {
+                for (int k = 0; k < planes[a]; ++k) {
+                    first += plane[a][k] < b.min[a];
+                    last += plane[a][k] <= b.max[a];
+                }
+            }
+            m &= range[a][first][last];
+        }
+        return m;
+    }
+};
+
+
+std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
+                                std::vector<uint32_t> &refs, int depth, double budget);
+
+/// Fill in the counters of \p node from its children (after they are built).
+void summarize(TempNode &node) {
+    node.subtreeRefs = node.kept.size();
+    if (!node.kept.empty()) node.subtreeWords = TriangleStore::leafWords(uint32_t(node.kept.size()));
+    for (int c = 0; c < 8; ++c) {
+        if (node.inner[c]) {
+            node.subtreeNodes += node.inner[c]->subtreeNodes;
+            node.subtreeRefs += node.inner[c]->subtreeRefs;
+            node.subtreeWords += node.inner[c]->subtreeWords;
+        } else if (!node.refs[c].empty()) {
+            node.subtreeRefs += node.refs[c].size();
+            node.subtreeWords += TriangleStore::leafWords(uint32_t(node.refs[c].size()));
+        }
+    }
+}
+
+/// The child cells among \p mask (those the bounding box \p b touches) that the triangle
+/// \p v itself touches. Two candidates with the box inside the cell need no test: the
+/// triangle is connected, reaches both closed sides of the plane between them and stays in
+/// those two cells, so it touches both. Otherwise a corner inside a cell settles that cell,
+/// and the separating-axis test decides the rest.
+__attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const BoundingBox3f &b,
+                                          const BoundingBox3f &cell, const BoundingBox3f cells[8], unsigned mask) {
+    bool inside = b.min.x() >= cell.min.x() && b.min.y() >= cell.min.y() && b.min.z() >= cell.min.z() &&
+                  b.max.x() <= cell.max.x() && b.max.y() <= cell.max.y() && b.max.z() <= cell.max.z();
+    if (inside && __builtin_popcount(mask) == 2) return mask;
+    unsigned kept = 0;
+    for (unsigned m = mask; m; m &= m - 1) {
+        int c = __builtin_ctz(m);
+        if (cells[c].contains(v[0]) || cells[c].contains(v[1]) || cells[c].contains(v[2]) ||
+            triangleOverlapsBox(v[0], v[1], v[2], cells[c]))
+            kept |= 1u << c;
+    }
+    return kept ? kept : mask;  // never lose a triangle to rounding
+}
+
+/// A reference is a global triangle id; the `sah` rule marks with this bit the triangles that
+/// went down loose (not copied; their bounds are no longer clipped to the cell).
+constexpr uint32_t kLooseBit = 0x80000000u;
+
+/// Strip the loose marks of a list that becomes a leaf or a kept list.
+void finish(std::vector<uint32_t> &list) {
+    for (uint32_t &r : list) r &= ~kLooseBit;
+}
+
+/// Split \p refs (the triangles touching \p cell, whose clipped bounds are \p box; a node at
+/// \p depth) and recurse. Returns null when the node should stay a leaf.
+///
+/// Reference budget: the node may hold at most \p budget references below it, and each child
+/// inherits the share of it proportional to its references. The root gets kRefBudget (`count`,
+/// `seed`) or kSahRefBudget (`sah`) times the triangle count, so no input (needles spanning
+/// the box, huge triangles, a vertex fan) makes the tree hold more references per triangle.
+/// `count` and `seed` refuse a split beyond the budget; `sah` sends the straddling triangles
+/// down loose instead (each into the one child that holds the centre of its bounding box, its
+/// child's box grown to hold it whole: a loose octree, Ulrich 2000), which never adds a
+/// reference.
+std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, const BoundingBox3f &box,
+                                std::vector<uint32_t> &ids, int depthIn, double budget) {
+    const size_t n = ids.size();
+    const bool sah = in.rule == Rule::Sah;
+    BoundingBox3f cell = cellIn;
+    int depth = depthIn;
+    OctreeNode::Pattern pattern{{0, 1, 2}};
+    BoundingBox3f cells[8];
+    std::vector<uint8_t> masks(n);
+    std::optional<Classifier> classifier;
+
+    // Which child cells a triangle touches: its bounding box against the cells (closed: a box
+    // touching a plane goes to both sides), refined by the SAT only for straddling triangles;
+    // a loose triangle goes to the cell of its box's centre.
+    auto classify = [&](size_t i) {
+        const uint32_t id = ids[i];
+        const BoundingBox3f &b = in.bounds[id & ~kLooseBit];
+        unsigned mask = id & kLooseBit ? 1u << slotOf(cell, pattern, b.center()) : classifier->mask(b);
+        if ((mask & (mask - 1)) && !(id & kLooseBit) && in.exact) mask = refine(in.vertices[id], b, cell, cells, mask);
         masks[i] = uint8_t(mask);
     };
-    if (n > 8 * kParallelRefs)
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t> &r) {
-            for (size_t i = r.begin(); i != r.end(); ++i) classify(i);
-        });
-    else
-        for (size_t i = 0; i < n; ++i) classify(i);
+    for (;;) {
+        pattern = patternFor(in.rule, cell);
+        for (int c = 0; c < 8; ++c) cells[c] = cellOf(cell, pattern, c);
+        classifier.emplace(cell, pattern, cells);
+        if (n > 8 * kParallelRefs)
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t> &r) {
+                for (size_t i = r.begin(); i != r.end(); ++i) classify(i);
+            });
+        else
+            for (size_t i = 0; i < n; ++i) classify(i);
+        // `sah`: every triangle in one and the same child: the split would separate nothing,
+        // so the cell shrinks to that child without a node (empty space costs no level of the
+        // traversal, only of maxDepth).
+        if (!sah || depth + 1 >= in.maxDepth) break;
+        uint8_t first = masks[0];
+        if (__builtin_popcount(first) != 1 ||
+            std::any_of(masks.begin(), masks.end(), [first](uint8_t m) { return m != first; }))
+            break;
+        cell = cells[__builtin_ctz(first)];
+        ++depth;
+    }
 
-    size_t counts[8] = {};
-    for (uint8_t m : masks)
-        for (unsigned b = m; b; b &= b - 1) ++counts[__builtin_ctz(b)];
-    size_t sum = 0, largest = 0;
+    // Children's counts and tight boxes over the triangles that go down (mask != 0).
+    size_t counts[8];
+    BoundingBox3f boxes[8];
+    auto gather = [&] {
+        for (int c = 0; c < 8; ++c) {
+            counts[c] = 0;
+            boxes[c] = BoundingBox3f();
+        }
+        for (size_t i = 0; i < n; ++i) {
+            const BoundingBox3f &b = in.bounds[ids[i] & ~kLooseBit];
+            for (unsigned m = masks[i]; m; m &= m - 1) {
+                int c = __builtin_ctz(m);
+                ++counts[c];
+                // A loose triangle's part that matters lies in this node's box (by induction).
+                const BoundingBox3f &r = ids[i] & kLooseBit ? box : cells[c];
+                BoundingBox3f &o = boxes[c];
+                for (int a = 0; a < 3; ++a) {
+                    float lo = b.min[a] > r.min[a] ? b.min[a] : r.min[a];
+                    float hi = b.max[a] < r.max[a] ? b.max[a] : r.max[a];
+                    o.min[a] = lo < o.min[a] ? lo : o.min[a];
+                    o.max[a] = hi > o.max[a] ? hi : o.max[a];
+                }
+            }
+        }
+    };
+    gather();
+    const double boxArea = area(box);
+    auto probability = [&](int c) { return boxArea > 0.0 ? area(boxes[c]) / boxArea : 1.0; };
+
+    // Large triangles stay in the node (`sah`), tested before its children by every ray that
+    // reaches it. In units of the cost model, per triangle t (w: one triangle test, a
+    // sixteenth of a chunk):
+    //  - copied down, t costs sum over its children c of P(c) * w, and a ray that hits t must
+    //    first descend to one of its leaves, about D more node visits (D: the levels this
+    //    subtree will have, log8 of its chunks); a ray hits t with probability about
+    //    2 area(t) / A(node box) (Cauchy: a flat convex surface's mean projected area);
+    //  - kept, t costs w for every ray that reaches the node.
+    // Keeping a set K saves sum over K of sum P(c) * w, plus D * kNode for the rays that hit
+    // one of K -- with probability at most min(1, sum over K of P(hit t)), since overlapping
+    // or stacked triangles are hit by the same rays -- and costs the kept list (all its chunks,
+    // at least one). The candidates (sum P(c) * w + P(hit t) * D * kNode > w) are taken in
+    // decreasing order of that benefit and the best prefix is kept, if it saves anything: a
+    // ground plane under a city or a table, the walls of a room, the backdrop of a studio,
+    // never a small triangle of a scanned mesh high in the tree. This is the cost-model form
+    // of storing objects at the level that matches their size instead of copying them into
+    // every cell (Ulrich 2000, "Loose octrees"; Havran 2000, "Heuristic ray shooting
+    // algorithms", 4.4).
+    std::vector<uint32_t> kept;
+    if (sah && n > 16) {
+        const double w = Cost::kChunk / 16.0;
+        const double descent = std::max(1.0, std::log(double(n) / 16.0) / std::log(8.0)) * Cost::kNode;
+        double p[8];
+        for (int c = 0; c < 8; ++c) p[c] = probability(c);
+        struct Candidate {
+            double copies, hit;
+            size_t i;
+        };
+        std::vector<Candidate> candidates;
+        for (size_t i = 0; i < n; ++i) {
+            unsigned m = masks[i];
+            if (!(m & (m - 1))) continue;
+            double copies = 0.0;
+            for (; m; m &= m - 1) copies += p[__builtin_ctz(m)];
+            const auto &v = in.vertices[ids[i] & ~kLooseBit];
+            double hit = boxArea > 0.0 ? std::min(1.0, double((v[1] - v[0]).cross(v[2] - v[0]).norm()) / boxArea) : 0.0;
+            if (copies * w + hit * descent > w) candidates.push_back({copies * w, hit, i});
+        }
+        std::sort(candidates.begin(), candidates.end(), [&](const Candidate &a, const Candidate &b) {
+            return a.copies + a.hit * descent > b.copies + b.hit * descent;
+        });
+        double copies = 0.0, hit = 0.0, bestSaving = 0.0;
+        size_t best = 0;
+        for (size_t k = 0; k < candidates.size() && k < OctreeNode::kKeptMask; ++k) {
+            copies += candidates[k].copies;
+            hit += candidates[k].hit;
+            double saving = copies + std::min(1.0, hit) * descent - Cost::list(k + 1);
+            if (saving > bestSaving + 1e-9) {
+                bestSaving = saving;
+                best = k + 1;
+            }
+        }
+        if (best > 0) {
+            kept.reserve(best);
+            for (size_t k = 0; k < best; ++k) {
+                kept.push_back(ids[candidates[k].i] & ~kLooseBit);
+                masks[candidates[k].i] = 0;
+            }
+            gather();
+        }
+    }
+
+    size_t down = n - kept.size(), sumDown = 0, largest = 0;
     for (size_t c : counts) {
-        sum += c;
+        sumDown += c;
         largest = std::max(largest, c);
     }
-    // No progress: the triangles are mostly larger than the children (each lands in more than
-    // half of them), or the fullest child keeps every triangle while many straddle (a vertex
-    // fan, stacked identical triangles). Splitting again would only multiply references.
-    if (sum > 4 * n || (largest == n && sum >= 2 * n) || double(sum) > budget) return nullptr;
+    if (double(sumDown + kept.size()) > budget) {
+        if (!sah) return nullptr;
+        // Over budget: the straddling triangles go down loose.
+        for (size_t i = 0; i < n; ++i)
+            if (masks[i] & (masks[i] - 1)) {
+                ids[i] |= kLooseBit;
+                classify(i);
+            }
+        gather();
+        sumDown = down;
+    }
+    const size_t sum = sumDown + kept.size();
+    if (sah) {
+        // Leaf or split, by the cost model (greedy: the children are priced as leaves).
+        double cost = Cost::kNode + Cost::list(kept.size());
+        for (int c = 0; c < 8; ++c) cost += probability(c) * Cost::list(counts[c]);
+        if (cost >= Cost::list(n)) return nullptr;
+    } else if (in.rule == Rule::Count && (sumDown > 4 * down || (largest == down && sumDown >= 2 * down))) {
+        // No progress: the triangles are mostly larger than the children (each lands in more
+        // than half of them), or the fullest child keeps every triangle while many straddle
+        // (a vertex fan, stacked identical triangles): splitting again would only multiply
+        // references. The seed's rule has no such test; it ends at maxDepth and the budget.
+        return nullptr;
+    }
 
     auto node = std::make_unique<TempNode>();
-    for (int c = 0; c < 8; ++c) node->refs[c].reserve(counts[c]);
+    node->pattern = pattern;
+    node->kept = std::move(kept);
+    for (int c = 0; c < 8; ++c) {
+        node->refs[c].reserve(counts[c]);
+        node->box[c] = boxes[c];
+    }
     for (size_t i = 0; i < n; ++i)
-        for (unsigned b = masks[i]; b; b &= b - 1) {
-            int c = __builtin_ctz(b);
-            node->refs[c].push_back(refs[i]);
-            const BoundingBox3f &tb = in.bounds[refs[i]];
-            node->box[c].expandBy(BoundingBox3f(tb.min.cwiseMax(cells[c].min), tb.max.cwiseMin(cells[c].max)));
-        }
+        for (unsigned m = masks[i]; m; m &= m - 1) node->refs[__builtin_ctz(m)].push_back(ids[i]);
     masks = {};
+
+    // Depth of each child: one level below, or for the seed's rule one more level for every
+    // earlier sibling (its build passes `++ctr` to the children in turn, empty ones included).
+    for (int c = 0; c < 8; ++c) node->childDepth[c] = depth + 1 + (in.rule == Rule::Seed ? c : 0);
 
     auto buildChild = [&](int c) {
         std::vector<uint32_t> &list = node->refs[c];
-        if (list.size() < in.leafSize || depth + 1 >= in.maxDepth) return;
-        double share = budget * double(list.size()) / double(sum);
-        std::unique_ptr<TempNode> sub = split(in, cells[c], list, depth + 1, share);
-        if (!sub) return;
-        node->inner[c] = std::move(sub);
-        std::vector<uint32_t>().swap(list);
+        if (list.size() >= in.leafSize && node->childDepth[c] < in.maxDepth) {
+            double share = budget * double(list.size()) / double(sum);
+            std::unique_ptr<TempNode> sub = split(in, cells[c], node->box[c], list, node->childDepth[c], share);
+            if (sub) {
+                node->inner[c] = std::move(sub);
+                std::vector<uint32_t>().swap(list);
+                return;
+            }
+        }
+        finish(list);
     };
     if (n > kParallelRefs) {
         tbb::task_group group;
@@ -136,141 +406,22 @@ std::unique_ptr<TempNode> split(const BuildInput &in, const BoundingBox3f &cell,
     } else {
         for (int c = 0; c < 8; ++c) buildChild(c);
     }
-    for (int c = 0; c < 8; ++c) {
-        if (node->inner[c]) {
-            node->subtreeNodes += node->inner[c]->subtreeNodes;
-            node->subtreeRefs += node->inner[c]->subtreeRefs;
-            node->subtreeWords += node->inner[c]->subtreeWords;
-        } else {
-            node->subtreeRefs += node->refs[c].size();
-            if (!node->refs[c].empty()) node->subtreeWords += TriangleStore::leafWords(uint32_t(node->refs[c].size()));
-        }
-    }
+    summarize(*node);
     return node;
-}
-
-/// Write \p node at \p index (children in DFS preorder after it) and its leaves from word \p offset.
-void flatten(const TempNode &node, uint32_t index, uint32_t offset, std::vector<OctreeNode> &nodes,
-             TriangleStore &store, const std::vector<std::array<Point3f, 3>> &vertices) {
-    OctreeNode &out = nodes[index];
-    uint32_t next = index + 1;
-    tbb::task_group group;
-    bool spawned = false;
-    for (int c = 0; c < 8; ++c) {
-        const BoundingBox3f &b = node.box[c];
-        bool empty = !node.inner[c] && node.refs[c].empty();
-        for (int a = 0; a < 3; ++a) {
-            out.box[a][c] = empty ? Infinity : b.min[a];
-            out.box[a][8 + c] = empty ? -Infinity : b.max[a];
-        }
-        out.child[c] = 0;
-        out.count[c] = 0;
-        if (node.inner[c]) {
-            const TempNode &sub = *node.inner[c];
-            out.child[c] = next;
-            if (sub.subtreeRefs > kParallelRefs) {
-                spawned = true;
-                group.run([&, next, offset] { flatten(sub, next, offset, nodes, store, vertices); });
-            } else {
-                flatten(sub, next, offset, nodes, store, vertices);
-            }
-            next += uint32_t(sub.subtreeNodes);
-            offset += uint32_t(sub.subtreeWords);
-        } else if (!empty) {
-            uint32_t count = uint32_t(node.refs[c].size());
-            out.child[c] = offset;
-            out.count[c] = count;
-            store.setLeaf(offset, node.refs[c].data(), count, vertices);
-            offset += uint32_t(TriangleStore::leafWords(count));
-        }
-    }
-    if (spawned) group.wait();
 }
 
 } // namespace
 
-void OctreeAccel::buildImpl() {
-    m_nodes.clear();
-    m_stats = Stats();
-    const uint32_t total = triangleCount();
+OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3f &cell) { return patternFor(rule, cell); }
 
-    // Gather corners and bounds of every triangle; triangles with a non-finite corner can
-    // never be hit meaningfully and are left out.
-    std::vector<std::array<Point3f, 3>> vertices(total);
-    std::vector<BoundingBox3f> bounds(total);
-    std::vector<uint32_t> all;
-    all.reserve(total);
-    BoundingBox3f sceneBox;
-    for (size_t m = 0; m < m_meshes.size(); ++m) {
-        const Mesh *mesh = m_meshes[m];
-        for (uint32_t f = 0; f < mesh->triangleCount(); ++f) {
-            uint32_t prim = m_offsets[m] + f;
-            auto &v = vertices[prim];
-            for (int k = 0; k < 3; ++k) v[k] = mesh->vertex(f, k);
-            if (!(v[0].allFinite() && v[1].allFinite() && v[2].allFinite())) continue;
-            for (int k = 0; k < 3; ++k) bounds[prim].expandBy(v[k]);
-            sceneBox.expandBy(bounds[prim]);
-            all.push_back(prim);
-        }
-    }
+BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c) { return cellOf(cell, p, c); }
 
-    // Root cell: the scene box, each side at least 2^-10 of the longest, so that a flat scene
-    // does not put every triangle on every midplane of a zero-thickness cell.
-    BoundingBox3f cell = sceneBox;
-    if (cell.isValid()) {
-        float minSide = cell.extents().maxCoeff() * 0x1p-10f;
-        for (int a = 0; a < 3; ++a) {
-            float grow = std::max(0.0f, 0.5f * (minSide - cell.extents()[a]));
-            cell.min[a] -= grow;
-            cell.max[a] += grow;
-        }
-    }
-
-    BuildInput in{vertices, bounds, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact};
-    std::unique_ptr<TempNode> root;
-    if (all.size() >= size_t(m_leafSize) && m_maxDepth > 0) root = split(in, cell, all, 0, kRefBudget * double(all.size()));
-    bool rootIsLeaf = !root;
-    if (rootIsLeaf) {
-        // The root node then holds a single leaf child with every triangle.
-        root = std::make_unique<TempNode>();
-        if (!all.empty()) root->box[0] = sceneBox;
-        root->subtreeRefs = all.size();
-        root->subtreeWords = all.empty() ? 0 : TriangleStore::leafWords(uint32_t(all.size()));
-        root->refs[0] = std::move(all);
-    }
-    std::vector<uint32_t>().swap(all);
-    std::vector<BoundingBox3f>().swap(bounds);
-
-    m_nodes.resize(root->subtreeNodes);
-    m_nodes.shrink_to_fit();
-    if (root->subtreeWords >= size_t(UINT32_MAX))
-        throw NoriException("octree: the scene needs {} triangle references, too many for 32-bit offsets",
-                            root->subtreeRefs);
-    m_triangles.reset(m_intersector, root->subtreeWords);
-    flatten(*root, 0, 0, m_nodes, m_triangles, vertices);
-
-    // Statistics over the temporary tree (serial; a few ten thousand nodes).
-    m_stats.refs = root->subtreeRefs;
-    if (rootIsLeaf) {
-        m_stats.leafNodes = 1;
-        m_stats.emptyLeaves = root->subtreeRefs == 0;
-        return;
-    }
-    std::vector<std::pair<const TempNode *, int>> stack{{root.get(), 0}};
-    while (!stack.empty()) {
-        auto [node, depth] = stack.back();
-        stack.pop_back();
-        ++m_stats.internalNodes;
-        for (int c = 0; c < 8; ++c) {
-            if (node->inner[c]) {
-                stack.push_back({node->inner[c].get(), depth + 1});
-                continue;
-            }
-            ++m_stats.leafNodes;
-            if (node->refs[c].empty()) ++m_stats.emptyLeaves;
-            m_stats.maxDepthReached = std::max(m_stats.maxDepthReached, depth + 1);
-        }
-    }
+std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
+                                    const std::vector<uint32_t> &refs) {
+    if (refs.size() < in.leafSize || in.maxDepth <= 0) return nullptr;
+    double perTriangle = in.rule == Rule::Sah ? kSahRefBudget : kRefBudget;
+    std::vector<uint32_t> ids(refs);
+    return split(in, cell, box, ids, 0, perTriangle * double(refs.size()));
 }
 
-} // namespace nori
+} // namespace nori::octree_build

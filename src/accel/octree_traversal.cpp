@@ -13,6 +13,12 @@
 #endif
 
 namespace nori {
+#ifdef NORI_OCTREE_COUNTERS
+OctreeCounters g_octreeCounters;
+#define NORI_OCTREE_COUNT(field, n) (g_octreeCounters.field += (n))
+#else
+#define NORI_OCTREE_COUNT(field, n) ((void)0)
+#endif
 
 namespace {
 
@@ -28,18 +34,38 @@ constexpr int kStackSize = 8 * (OctreeAccel::kMaxDepthLimit + 1);
 struct SlabRay {
     float o[3], rcpNear[3], rcpFar[3];
     int neg[3];  ///< 1 where the direction's sign bit is set: the entry plane is the box's upper bound
-    unsigned octant;
+    unsigned signs;  ///< bit a = neg[a]
 
     explicit SlabRay(const Ray3f &ray) {
-        octant = 0;
+        signs = 0;
         for (int a = 0; a < 3; ++a) {
             o[a] = ray.o[a];
             neg[a] = std::signbit(ray.d[a]) ? 1 : 0;
             rcpNear[a] = ray.dRcp[a] * (1.0f - kSlabEps);
             rcpFar[a] = ray.dRcp[a] * (1.0f + kSlabEps);
-            octant |= unsigned(neg[a]) << a;
+            signs |= unsigned(neg[a]) << a;
         }
     }
+
+    /// The ray's octant for a node with pattern \p code: bit 2 - l is the sign of the
+    /// direction along the node's bisection axis l (see OctreeNode::Pattern).
+    unsigned octant(uint32_t code) const { return kOctants[code][signs]; }
+
+    /// kOctants[code][signs], for every pattern code.
+    struct OctantTable {
+        uint8_t o[64][8];
+        OctantTable() {
+            for (uint32_t code = 0; code < 64; ++code)
+                for (unsigned sg = 0; sg < 8; ++sg) {
+                    OctreeNode::Pattern p = OctreeNode::Pattern::fromCode(code);
+                    unsigned oct = 0;
+                    for (int l = 0; l < 3; ++l) oct |= ((sg >> (p.axis[l] & 3u)) & 1u) << (2 - l);
+                    o[code][sg] = uint8_t(oct);
+                }
+        }
+        const uint8_t *operator[](uint32_t code) const { return o[code]; }
+    };
+    static const OctantTable kOctants;
 
     /// Entry distance into child \p c of \p node if the ray meets it within [mint, maxt].
     /// A NaN (origin on a slab plane of a direction component that is zero) never narrows
@@ -57,66 +83,57 @@ struct SlabRay {
     }
 };
 
+const SlabRay::OctantTable SlabRay::kOctants;
+
+/// Pattern code of an inner-node reference.
+inline uint32_t patternOf(uint32_t ref) { return (ref >> OctreeNode::kPatternShift) & 63u; }
+
 struct StackEntry {
-    uint32_t child, count;  ///< as in OctreeNode: count 0 = inner node
+    uint32_t child, count;  ///< as in OctreeNode
     float tnear;
 };
 
 #if NORI_OCTREE_AVX512
-/// Permutation tables: lane j < 8 gets the entry plane of child (7 - j) ^ octant, lane 8 + j
-/// its exit plane, so the lanes come out in the ray's back-to-front octant order (pushed onto
-/// the stack in that order, the nearest child ends up on top).
-struct PermTable {
-    alignas(64) int idx[8][2][16];
-    alignas(32) int child[8][8];
-    PermTable() {
-        for (int oct = 0; oct < 8; ++oct) {
-            for (int neg = 0; neg < 2; ++neg)
-                for (int j = 0; j < 8; ++j) {
-                    int c = (7 - j) ^ oct;
-                    idx[oct][neg][j] = neg ? 8 + c : c;
-                    idx[oct][neg][8 + j] = neg ? c : 8 + c;
-                }
-            for (int j = 0; j < 8; ++j) child[oct][j] = (7 - j) ^ oct;
-        }
-    }
-};
-const PermTable kPerm;
-
-/// Per-ray data of the 8-box AVX-512 test. Exit lanes are negated so that one max
-/// accumulates entry distances (lanes 0-7) and minus exit distances (lanes 8-15) at once.
+/// Per-ray data of the 8-box AVX-512 test. Lane j < 8 gets the entry plane of child
+/// (7 - j) ^ octant, lane 8 + j its exit plane, so the lanes come out in the ray's back-to-front
+/// order (pushed onto the stack in that order, the nearest child ends up on top). Exit lanes
+/// are negated so that one max accumulates entry distances (lanes 0-7) and minus exit
+/// distances (lanes 8-15) at once.
 struct SimdRay {
     __m512 org[3], scale[3];
-    __m512i perm[3];
-    __m256i childPerm;
-    unsigned octant;
+    __m512i flip[3];  ///< per axis: 8 in the lanes that read the box's upper half
+    unsigned signs;
 
-    explicit SimdRay(const SlabRay &s) : octant(s.octant) {
-        childPerm = _mm256_load_si256(reinterpret_cast<const __m256i *>(kPerm.child[octant]));
+    explicit SimdRay(const SlabRay &s) : signs(s.signs) {
         for (int a = 0; a < 3; ++a) {
             org[a] = _mm512_set1_ps(s.o[a]);
             scale[a] = _mm512_mask_blend_ps(0xFF00, _mm512_set1_ps(s.rcpNear[a]), _mm512_set1_ps(-s.rcpFar[a]));
-            perm[a] = _mm512_load_si512(kPerm.idx[octant][s.neg[a]]);
+            flip[a] = _mm512_mask_blend_epi32(0xFF00, _mm512_set1_epi32(8 * s.neg[a]), _mm512_set1_epi32(8 - 8 * s.neg[a]));
         }
     }
     static __m512 interval(float mint, float maxt) {
         return _mm512_mask_blend_ps(0xFF00, _mm512_set1_ps(mint), _mm512_set1_ps(-maxt));
     }
-    /// Push the children of \p node that the ray enters within the interval onto the stack
-    /// (farthest first, by octant order) with their entry distances; returns how many.
-    /// Register compress plus a full store: a compress straight to memory is slow on some cores.
-    int push(const OctreeNode &node, __m512 interval, uint32_t *child, uint32_t *count, float *tnear) const {
+    /// Push the children of \p node (reached through a reference with pattern \p code) that the
+    /// ray enters within the interval onto the stack (farthest first) with their entry
+    /// distances; returns how many. Register compress plus a full store: a compress straight
+    /// to memory is slow on some cores.
+    int push(const OctreeNode &node, uint32_t code, __m512 interval, uint32_t *child, uint32_t *count,
+             float *tnear) const {
+        const __m512i back = _mm512_set_epi32(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
+        __m512i order = _mm512_xor_si512(back, _mm512_set1_epi32(int(SlabRay::kOctants[code][signs])));
         __m512 acc = interval;
         for (int a = 0; a < 3; ++a) {
-            __m512 planes = _mm512_permutexvar_ps(perm[a], _mm512_load_ps(node.box[a]));
+            __m512 planes = _mm512_permutexvar_ps(_mm512_xor_si512(order, flip[a]), _mm512_load_ps(node.box[a]));
             __m512 t = _mm512_mul_ps(_mm512_sub_ps(planes, org[a]), scale[a]);
             acc = _mm512_max_ps(t, acc);  // vmaxps returns the second operand on NaN
         }
         __m256 entry = _mm512_castps512_ps256(acc);
         __m256 exit = _mm256_xor_ps(_mm512_extractf32x8_ps(acc, 1), _mm256_set1_ps(-0.0f));
         __mmask8 mask = _mm256_cmp_ps_mask(entry, exit, _CMP_LE_OQ);
-        __m256i c = _mm256_permutexvar_epi32(childPerm, _mm256_load_si256(reinterpret_cast<const __m256i *>(node.child)));
-        __m256i n = _mm256_permutexvar_epi32(childPerm, _mm256_load_si256(reinterpret_cast<const __m256i *>(node.count)));
+        __m256i childOrder = _mm512_castsi512_si256(order);
+        __m256i c = _mm256_permutexvar_epi32(childOrder, _mm256_load_si256(reinterpret_cast<const __m256i *>(node.child)));
+        __m256i n = _mm256_permutexvar_epi32(childOrder, _mm256_load_si256(reinterpret_cast<const __m256i *>(node.count)));
         _mm256_storeu_si256(reinterpret_cast<__m256i *>(child), _mm256_maskz_compress_epi32(mask, c));
         _mm256_storeu_si256(reinterpret_cast<__m256i *>(count), _mm256_maskz_compress_epi32(mask, n));
         _mm256_storeu_ps(tnear, _mm256_maskz_compress_ps(mask, entry));
@@ -129,13 +146,10 @@ struct SimdRay {
 /// compress instruction).
 struct SimdRay {
     __m256 org[3], rcpNear[3], rcpFar[3];
-    __m256i perm;
     int neg[3];
-    unsigned octant;
+    unsigned signs;
 
-    explicit SimdRay(const SlabRay &s) : octant(s.octant) {
-        perm = _mm256_setr_epi32(int(7 ^ octant), int(6 ^ octant), int(5 ^ octant), int(4 ^ octant),
-                                 int(3 ^ octant), int(2 ^ octant), int(1 ^ octant), int(0 ^ octant));
+    explicit SimdRay(const SlabRay &s) : signs(s.signs) {
         for (int a = 0; a < 3; ++a) {
             org[a] = _mm256_set1_ps(s.o[a]);
             rcpNear[a] = _mm256_set1_ps(s.rcpNear[a]);
@@ -147,7 +161,9 @@ struct SimdRay {
         __m256 mint, maxt;
     };
     static Interval interval(float mint, float maxt) { return {_mm256_set1_ps(mint), _mm256_set1_ps(maxt)}; }
-    int push(const OctreeNode &node, Interval iv, uint32_t *child, uint32_t *count, float *tnear) const {
+    int push(const OctreeNode &node, uint32_t code, Interval iv, uint32_t *child, uint32_t *count, float *tnear) const {
+        const unsigned octant = SlabRay::kOctants[code][signs];
+        const __m256i perm = _mm256_xor_si256(_mm256_setr_epi32(7, 6, 5, 4, 3, 2, 1, 0), _mm256_set1_epi32(int(octant)));
         __m256 t0 = iv.mint, t1 = iv.maxt;
         for (int a = 0; a < 3; ++a) {
             const float *box = node.box[a];
@@ -176,11 +192,11 @@ struct SimdRay {
 /// Portable stand-in with the same lane order.
 struct SimdRay {
     const SlabRay &slab;
-    unsigned octant;
-    explicit SimdRay(const SlabRay &s) : slab(s), octant(s.octant) {}
+    explicit SimdRay(const SlabRay &s) : slab(s) {}
     struct Interval { float mint, maxt; };
     static Interval interval(float mint, float maxt) { return {mint, maxt}; }
-    int push(const OctreeNode &node, Interval iv, uint32_t *child, uint32_t *count, float *tnear) const {
+    int push(const OctreeNode &node, uint32_t code, Interval iv, uint32_t *child, uint32_t *count, float *tnear) const {
+        const unsigned octant = slab.octant(code);
         int k = 0;
         for (int j = 7; j >= 0; --j) {
             int c = int(unsigned(j) ^ octant);
@@ -214,17 +230,24 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
     alignas(32) float stackT[kStackSize + 8];
     stackChild[0] = 0;
-    stackCount[0] = 0;
+    stackCount[0] = m_rootCount;
     stackT[0] = ray.mint;
     int sp = 1;
     while (sp > 0) {
         --sp;
         if (stackT[sp] > best.t) continue;  // entered only beyond the closest hit so far
         uint32_t child = stackChild[sp], count = stackCount[sp];
-        if (count == 0) {
-            sp += simd.push(m_nodes[child], interval, stackChild + sp, stackCount + sp, stackT + sp);
-        } else if (m_triangles.intersect(tri, child, count, best)) {
-            interval = SimdRay::interval(ray.mint, best.t);
+        if (count & OctreeNode::kInner) {
+            uint32_t kept = count & OctreeNode::kKeptMask;  // the node's own large triangles first
+            NORI_OCTREE_COUNT(nodes, 1);
+            NORI_OCTREE_COUNT(keptTris, kept);
+            if (kept && m_triangles.intersect(tri, m_keptOffset[child], kept, best))
+                interval = SimdRay::interval(ray.mint, best.t);
+            sp += simd.push(m_nodes[child], patternOf(count), interval, stackChild + sp, stackCount + sp, stackT + sp);
+        } else {
+            NORI_OCTREE_COUNT(leaves, 1);
+            NORI_OCTREE_COUNT(leafTris, count);
+            if (m_triangles.intersect(tri, child, count, best)) interval = SimdRay::interval(ray.mint, best.t);
         }
     }
     if (best.prim == ~0u) return false;
@@ -241,15 +264,22 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
     alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
     alignas(32) float stackT[kStackSize + 8];
     stackChild[0] = 0;
-    stackCount[0] = 0;
+    stackCount[0] = m_rootCount;
     int sp = 1;
     while (sp > 0) {
         --sp;
         uint32_t child = stackChild[sp], count = stackCount[sp];
-        if (count == 0)
-            sp += simd.push(m_nodes[child], interval, stackChild + sp, stackCount + sp, stackT + sp);
-        else if (m_triangles.occluded(tri, child, count, ray.maxt))
-            return true;
+        if (count & OctreeNode::kInner) {
+            uint32_t kept = count & OctreeNode::kKeptMask;
+            NORI_OCTREE_COUNT(nodes, 1);
+            NORI_OCTREE_COUNT(keptTris, kept);
+            if (kept && m_triangles.occluded(tri, m_keptOffset[child], kept, ray.maxt)) return true;
+            sp += simd.push(m_nodes[child], patternOf(count), interval, stackChild + sp, stackCount + sp, stackT + sp);
+        } else {
+            NORI_OCTREE_COUNT(leaves, 1);
+            NORI_OCTREE_COUNT(leafTris, count);
+            if (m_triangles.occluded(tri, child, count, ray.maxt)) return true;
+        }
     }
     return false;
 }
@@ -284,14 +314,15 @@ bool OctreeAccel::intersectSorted(const Ray3f &ray, Hit &hit) const {
     best.t = ray.maxt;
     StackEntry stack[kStackSize];
     int sp = 0;
-    stack[sp++] = {0, 0, ray.mint};
+    stack[sp++] = {0, m_rootCount, ray.mint};
     while (sp > 0) {
         StackEntry e = stack[--sp];
         if (e.tnear > best.t) continue;
-        if (e.count > 0) {
+        if (!(e.count & OctreeNode::kInner)) {
             m_triangles.intersect(tri, e.child, e.count, best);
             continue;
         }
+        if (uint32_t kept = e.count & OctreeNode::kKeptMask) m_triangles.intersect(tri, m_keptOffset[e.child], kept, best);
         const OctreeNode &node = m_nodes[e.child];
         int order[8];
         float tnear[8];
@@ -309,13 +340,15 @@ bool OctreeAccel::occludedSorted(const Ray3f &ray) const {
     const TriangleRay tri(ray);
     StackEntry stack[kStackSize];
     int sp = 0;
-    stack[sp++] = {0, 0, ray.mint};
+    stack[sp++] = {0, m_rootCount, ray.mint};
     while (sp > 0) {
         StackEntry e = stack[--sp];
-        if (e.count > 0) {
+        if (!(e.count & OctreeNode::kInner)) {
             if (m_triangles.occluded(tri, e.child, e.count, ray.maxt)) return true;
             continue;
         }
+        uint32_t kept = e.count & OctreeNode::kKeptMask;
+        if (kept && m_triangles.occluded(tri, m_keptOffset[e.child], kept, ray.maxt)) return true;
         const OctreeNode &node = m_nodes[e.child];
         int order[8];
         float tnear[8];
@@ -341,9 +374,19 @@ float distanceToBox(const OctreeNode &node, int c, const Ray3f &ray) {
     return d2;
 }
 
-bool seedRecurse(const std::vector<OctreeNode> &nodes, const TriangleStore &store, uint32_t index,
-                 const Ray3f &ray, const SlabRay &slab, const TriangleRay &tri, Hit &best) {
-    const OctreeNode &node = nodes[index];
+/// The tree as the seed traversal reads it.
+struct SeedTree {
+    const std::vector<OctreeNode> &nodes;
+    const std::vector<uint32_t> &keptOffset;
+    const TriangleStore &store;
+};
+
+bool seedRecurse(const SeedTree &tree, uint32_t index, uint32_t count, const Ray3f &ray, const SlabRay &slab,
+                 const TriangleRay &tri, Hit &best) {
+    // The node's own large triangles count as its first child.
+    uint32_t kept = count & OctreeNode::kKeptMask;
+    if (kept && tree.store.intersect(tri, tree.keptOffset[index], kept, best)) return true;
+    const OctreeNode &node = tree.nodes[index];
     int order[8], n = 0;
     float dist[8];
     for (int c = 0; c < 8; ++c) {
@@ -361,8 +404,9 @@ bool seedRecurse(const std::vector<OctreeNode> &nodes, const TriangleStore &stor
         int c = order[k];
         float t;
         if (!slab.hit(node, c, ray.mint, best.t, t)) continue;
-        bool found = node.count[c] > 0 ? store.intersect(tri, node.child[c], node.count[c], best)
-                                       : seedRecurse(nodes, store, node.child[c], ray, slab, tri, best);
+        uint32_t n = node.count[c];
+        bool found = !(n & OctreeNode::kInner) ? tree.store.intersect(tri, node.child[c], n, best)
+                                               : seedRecurse(tree, node.child[c], n, ray, slab, tri, best);
         if (found) return true;
     }
     return false;
@@ -374,7 +418,7 @@ bool OctreeAccel::intersectSeed(const Ray3f &ray, Hit &hit) const {
     const TriangleRay tri(ray);
     Hit best;
     best.t = ray.maxt;
-    if (!seedRecurse(m_nodes, m_triangles, 0, ray, slab, tri, best)) return false;
+    if (!seedRecurse(SeedTree{m_nodes, m_keptOffset, m_triangles}, 0, m_rootCount, ray, slab, tri, best)) return false;
     hit = best;
     return true;
 }

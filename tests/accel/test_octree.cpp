@@ -95,6 +95,13 @@ std::unique_ptr<Accel> makeAccel(const std::string &type, const PropertyList &pr
     return accel;
 }
 
+/// Walk the inner nodes of an accel that must be an octree.
+template <typename Visit> void octree_inspect(const Accel &accel, Visit visit) {
+    const auto *octree = dynamic_cast<const OctreeAccel *>(&accel);
+    ASSERT_NE(octree, nullptr);
+    octree->forEachNode(visit);
+}
+
 /// Random rays through the box, and rays aimed exactly at vertices and edge midpoints.
 std::vector<Ray3f> testRays(const std::vector<const Mesh *> &meshes, size_t count, uint64_t seed) {
     BoundingBox3f box;
@@ -209,6 +216,13 @@ std::vector<Scene> scenes() {
 } // namespace
 
 TEST(Octree, MatchesBruteForceBitForBit) {
+    // Every build rule with its own kind of tree: `sah` (defaults, deep small leaves, shallow),
+    // `count` (issue 3's octree: deep, tiny leaves, depth 0, large leaves) and `seed` (its depth
+    // counting). All must give the brute-force answers, whatever the tree.
+    struct Setting { const char *rule; int depth, leaf; };
+    const Setting settings[] = {{"sah", 24, 8}, {"sah", 32, 1}, {"sah", 3, 1},
+                                {"count", 16, 8}, {"count", 3, 1}, {"count", 0, 8}, {"count", 32, 1},
+                                {"count", 10, 32}, {"count", 16, 512}, {"seed", 12, 1}, {"seed", 20, 4}};
     std::map<std::string, size_t> spurious;
     for (const Scene &scene : scenes()) {
         std::vector<const Mesh *> meshes = scene.pointers();
@@ -219,14 +233,15 @@ TEST(Octree, MatchesBruteForceBitForBit) {
             Answers reference = answers(*makeAccel("brute", bp, meshes), rays);
             for (const char *trav : {"simd", "sorted"})
                 for (const char *overlap : {"exact", "bbox"})
-                    for (auto [depth, leaf] : {std::pair{16, 8}, {3, 1}, {0, 8}, {32, 1}, {10, 32}, {16, 512}}) {
-                        if (depth == 0 && scene.name != "empty_and_single") continue;  // brute force again
+                    for (const Setting &set : settings) {
+                        if (set.depth == 0 && scene.name != "empty_and_single") continue;  // brute force again
                         PropertyList p;
+                        p.setString("buildRule", set.rule);
                         p.setString("intersector", isect);
                         p.setString("traversal", trav);
                         p.setString("overlap", overlap);
-                        p.setInteger("maxDepth", depth);
-                        p.setInteger("leafSize", leaf);
+                        p.setInteger("maxDepth", set.depth);
+                        p.setInteger("leafSize", set.leaf);
                         auto octree = makeAccel("octree", p, meshes);
                         Differences diff = differences(answers(*octree, rays), reference, rays, meshes);
                         // Watertight: bit-identical. MT: only its spurious sliver hits may differ.
@@ -288,7 +303,8 @@ TEST(TriangleStore, SimdKernelsMatchScalarKernelsBitForBit) {
 }
 
 TEST(Octree, RejectsUnknownPropertyValues) {
-    for (auto [name, value] : {std::pair{"traversal", "fast"}, {"intersector", "moeller"}, {"overlap", "sat"}}) {
+    for (auto [name, value] :
+         {std::pair{"traversal", "fast"}, {"intersector", "moeller"}, {"overlap", "sat"}, {"buildRule", "kd"}}) {
         PropertyList p;
         p.setLocation("scene.xml:3");
         p.setString(name, value);
@@ -307,19 +323,38 @@ TEST(Octree, RejectsUnknownPropertyValues) {
 
 TEST(Octree, StatisticsAreConsistent) {
     Mesh mesh(icosphere(5), "ico");
-    auto octree = makeAccel("octree", PropertyList(), {&mesh});
-    std::map<std::string, double> s;
-    for (const AccelStat &st : octree->statistics()) s[st.name] = st.value;
-    for (const char *key : {"build_ms", "triangles", "internal_nodes", "leaf_nodes", "empty_leaves",
-                            "avg_tris_per_leaf", "max_depth_reached", "triangle_refs", "bytes"})
-        EXPECT_TRUE(s.count(key)) << key;
-    EXPECT_EQ(s["triangles"], double(mesh.triangleCount()));
-    EXPECT_EQ(s["leaf_nodes"], 7 * s["internal_nodes"] + 1);  // every inner node has 8 children
-    EXPECT_GE(s["triangle_refs"], s["triangles"]);
-    EXPECT_NEAR(s["avg_tris_per_leaf"], s["triangle_refs"] / (s["leaf_nodes"] - s["empty_leaves"]), 1e-9);
-    EXPECT_GT(s["max_depth_reached"], 0);
-    EXPECT_GE(s["bytes"], s["internal_nodes"] * sizeof(OctreeNode) + 40 * s["triangle_refs"]);
-    EXPECT_LE(s["bytes"], (s["internal_nodes"] + 1) * sizeof(OctreeNode) + 42 * s["triangle_refs"]);
+    for (const char *rule : {"sah", "count", "seed"}) {
+        PropertyList p;
+        p.setString("buildRule", rule);
+        if (std::string(rule) == "seed") p.setInteger("leafSize", 16);
+        auto octree = makeAccel("octree", p, {&mesh});
+        std::map<std::string, double> s;
+        for (const AccelStat &st : octree->statistics()) s[st.name] = st.value;
+        for (const char *key : {"build_ms", "triangles", "internal_nodes", "leaf_nodes", "empty_leaves", "avg_tris_per_leaf",
+                                "max_depth_reached", "triangle_refs", "kept_refs", "kept_nodes", "bytes"})
+            EXPECT_TRUE(s.count(key)) << rule << ": " << key;
+        EXPECT_EQ(s["triangles"], double(mesh.triangleCount())) << rule;
+        EXPECT_EQ(s["leaf_nodes"], 7 * s["internal_nodes"] + 1) << rule;  // every inner node has 8 child slots
+        EXPECT_GE(s["triangle_refs"], s["triangles"]) << rule;
+        EXPECT_LE(s["kept_refs"], s["triangle_refs"]) << rule;
+        EXPECT_LE(s["kept_nodes"], s["internal_nodes"]) << rule;
+        EXPECT_NEAR(s["avg_tris_per_leaf"], (s["triangle_refs"] - s["kept_refs"]) / (s["leaf_nodes"] - s["empty_leaves"]),
+                    1e-9)
+            << rule;
+        EXPECT_GT(s["max_depth_reached"], 0) << rule;
+        // Nodes (256 bytes and a 4-byte kept offset each) and 40 bytes per reference, plus at
+        // most 24 bytes of chunk box per 16 references.
+        EXPECT_GE(s["bytes"], s["internal_nodes"] * (sizeof(OctreeNode) + 4) + 40 * s["triangle_refs"]) << rule;
+        EXPECT_LE(s["bytes"], (s["internal_nodes"] + 1) * (sizeof(OctreeNode) + 4) + 42 * s["triangle_refs"]) << rule;
+        // The inspection walk sees the same tree.
+        size_t nodes = 0, kept = 0;
+        octree_inspect(*octree, [&](const OctreeAccel::NodeView &v) {
+            ++nodes;
+            kept += v.ref & OctreeNode::kKeptMask;
+        });
+        EXPECT_EQ(double(nodes), s["internal_nodes"]) << rule;
+        EXPECT_EQ(double(kept), s["kept_refs"]) << rule;
+    }
 }
 
 TEST(Octree, PathologicalInputsStayBounded) {

@@ -1,0 +1,48 @@
+/// \file octree_build.h
+/// \brief The octree's construction in two steps: a recursive midpoint subdivision into a
+/// temporary tree (octree_build.cpp), then its flattening into the node array and the triangle
+/// store (octree_layout.cpp).
+#pragma once
+
+#include "octree.h"
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace nori::octree_build {
+
+/// \brief What the subdivision reads.
+struct Input {
+    const std::vector<std::array<Point3f, 3>> &vertices;  ///< corners of every global triangle
+    const std::vector<BoundingBox3f> &bounds;              ///< bounding box of every global triangle
+    OctreeAccel::BuildRule rule;
+    int maxDepth;
+    size_t leafSize;
+    bool exact;  ///< separating-axis test for triangles whose box straddles a midplane
+};
+
+/// \brief An inner node of the temporary tree. Child slot c (see OctreeNode::Pattern) is an
+/// inner node (inner[c]), a leaf (refs[c] non-empty) or empty.
+struct TempNode {
+    BoundingBox3f box[8];  ///< tight child boxes
+    std::unique_ptr<TempNode> inner[8];
+    std::vector<uint32_t> refs[8];
+    std::vector<uint32_t> kept;  ///< large triangles tested at this node, before its children
+    OctreeNode::Pattern pattern{{0, 1, 2}};
+    int childDepth[8] = {};   ///< depth of each child as the build rule counts it
+    size_t subtreeNodes = 1;  ///< inner nodes in this subtree, this one included
+    size_t subtreeRefs = 0;   ///< triangle references in this subtree (leaves and kept lists)
+    size_t subtreeWords = 0;  ///< TriangleStore words of this subtree
+};
+
+/// \brief The bisections that make the children of \p cell under \p rule (see
+/// OctreeNode::Pattern), and the cell of child slot \p c.
+OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3f &cell);
+BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c);
+
+/// \brief Subdivide \p cell (holding the triangles \p refs, whose clipped bounds are \p box),
+/// the root at depth 0. Returns null when the root is best left a single leaf.
+std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
+                                    const std::vector<uint32_t> &refs);
+
+} // namespace nori::octree_build

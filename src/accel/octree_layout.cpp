@@ -1,0 +1,167 @@
+/// \file octree_layout.cpp
+/// \brief OctreeAccel::buildImpl(): gathers the triangles, runs the subdivision
+/// (octree_build.cpp) and lays the temporary tree out as flat nodes (depth-first preorder) and
+/// triangle-store blocks, in parallel; then the statistics.
+#include "octree_build.h"
+#include <tbb/task_group.h>
+#include <algorithm>
+#include <memory>
+
+namespace nori {
+
+namespace {
+
+using octree_build::TempNode;
+
+/// Subtrees with more references than this are written as parallel tasks.
+constexpr size_t kParallelRefs = 4096;
+
+/// Where the flattened tree goes.
+struct Layout {
+    std::vector<OctreeNode> &nodes;
+    std::vector<uint32_t> &keptOffset;
+    TriangleStore &store;
+    const std::vector<std::array<Point3f, 3>> &vertices;
+};
+
+/// The reference to \p node that its parent stores (count field).
+uint32_t innerCount(const TempNode &node) { return OctreeNode::innerRef(node.pattern, uint32_t(node.kept.size())); }
+
+/// Write \p node at \p index (its subtree in preorder after it), its kept list at word
+/// \p offset and its leaves after that.
+void flatten(const TempNode &node, uint32_t index, uint32_t offset, const Layout &out) {
+    OctreeNode &dst = out.nodes[index];
+    out.keptOffset[index] = offset;
+    if (!node.kept.empty()) {
+        out.store.setLeaf(offset, node.kept.data(), uint32_t(node.kept.size()), out.vertices);
+        offset += uint32_t(TriangleStore::leafWords(uint32_t(node.kept.size())));
+    }
+    uint32_t next = index + 1;
+    // Subtrees large enough to pay for a task are written in parallel (a task_group only
+    // where there are some: creating one per node would cost more than small subtrees).
+    std::unique_ptr<tbb::task_group> group;
+    for (int c = 0; c < 8; ++c) {
+        const BoundingBox3f &b = node.box[c];
+        bool empty = !node.inner[c] && node.refs[c].empty();
+        for (int a = 0; a < 3; ++a) {
+            dst.box[a][c] = empty ? Infinity : b.min[a];
+            dst.box[a][8 + c] = empty ? -Infinity : b.max[a];
+        }
+        dst.child[c] = 0;
+        dst.count[c] = 0;
+        if (node.inner[c]) {
+            const TempNode &sub = *node.inner[c];
+            dst.child[c] = next;
+            dst.count[c] = innerCount(sub);
+            if (sub.subtreeRefs > kParallelRefs) {
+                if (!group) group = std::make_unique<tbb::task_group>();
+                group->run([&, next, offset] { flatten(sub, next, offset, out); });
+            } else {
+                flatten(sub, next, offset, out);
+            }
+            next += uint32_t(sub.subtreeNodes);
+            offset += uint32_t(sub.subtreeWords);
+        } else if (!empty) {
+            uint32_t count = uint32_t(node.refs[c].size());
+            dst.child[c] = offset;
+            dst.count[c] = count;
+            out.store.setLeaf(offset, node.refs[c].data(), count, out.vertices);
+            offset += uint32_t(TriangleStore::leafWords(count));
+        }
+    }
+    if (group) group->wait();
+}
+
+} // namespace
+
+void OctreeAccel::buildImpl() {
+    m_nodes.clear();
+    m_keptOffset.clear();
+    m_rootCount = 0;
+    m_stats = Stats();
+    const uint32_t total = triangleCount();
+
+    // Gather corners and bounds of every triangle; triangles with a non-finite corner can
+    // never be hit meaningfully and are left out.
+    std::vector<std::array<Point3f, 3>> vertices(total);
+    std::vector<BoundingBox3f> bounds(total);
+    std::vector<uint32_t> all;
+    all.reserve(total);
+    BoundingBox3f sceneBox;
+    for (size_t m = 0; m < m_meshes.size(); ++m) {
+        const Mesh *mesh = m_meshes[m];
+        for (uint32_t f = 0; f < mesh->triangleCount(); ++f) {
+            uint32_t prim = m_offsets[m] + f;
+            auto &v = vertices[prim];
+            for (int k = 0; k < 3; ++k) v[k] = mesh->vertex(f, k);
+            if (!(v[0].allFinite() && v[1].allFinite() && v[2].allFinite())) continue;
+            for (int k = 0; k < 3; ++k) bounds[prim].expandBy(v[k]);
+            sceneBox.expandBy(bounds[prim]);
+            all.push_back(prim);
+        }
+    }
+
+    // Root cell: the scene box, each side at least 2^-10 of the longest, so that a flat scene
+    // does not put every triangle on every midplane of a zero-thickness cell.
+    BoundingBox3f cell = sceneBox;
+    if (cell.isValid()) {
+        float minSide = cell.extents().maxCoeff() * 0x1p-10f;
+        for (int a = 0; a < 3; ++a) {
+            float grow = std::max(0.0f, 0.5f * (minSide - cell.extents()[a]));
+            cell.min[a] -= grow;
+            cell.max[a] += grow;
+        }
+    }
+
+    octree_build::Input in{vertices, bounds, m_buildRule, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact};
+    std::unique_ptr<TempNode> root = octree_build::subdivide(in, cell, sceneBox, all);
+    bool rootIsLeaf = !root;
+    if (rootIsLeaf) {
+        // The root node then holds a single leaf child with every triangle.
+        root = std::make_unique<TempNode>();
+        if (!all.empty()) root->box[0] = sceneBox;
+        root->subtreeRefs = all.size();
+        root->subtreeWords = all.empty() ? 0 : TriangleStore::leafWords(uint32_t(all.size()));
+        root->refs[0] = std::move(all);
+    }
+    std::vector<uint32_t>().swap(all);
+    std::vector<BoundingBox3f>().swap(bounds);
+
+    if (root->subtreeWords >= size_t(UINT32_MAX))
+        throw NoriException("octree: the scene needs {} triangle references, too many for 32-bit offsets",
+                            root->subtreeRefs);
+    m_nodes.resize(root->subtreeNodes);
+    m_nodes.shrink_to_fit();
+    m_keptOffset.resize(root->subtreeNodes);
+    m_keptOffset.shrink_to_fit();
+    m_rootCount = innerCount(*root);
+    m_triangles.reset(m_intersector, root->subtreeWords);
+    flatten(*root, 0, 0, Layout{m_nodes, m_keptOffset, m_triangles, vertices});
+
+    // Statistics over the temporary tree (serial; a few ten thousand nodes).
+    m_stats.refs = root->subtreeRefs;
+    if (rootIsLeaf) {
+        m_stats.leafNodes = 1;
+        m_stats.emptyLeaves = root->subtreeRefs == 0;
+        return;
+    }
+    std::vector<const TempNode *> stack{root.get()};
+    while (!stack.empty()) {
+        const TempNode *node = stack.back();
+        stack.pop_back();
+        ++m_stats.internalNodes;
+        m_stats.keptRefs += node->kept.size();
+        m_stats.keptNodes += !node->kept.empty();
+        for (int c = 0; c < 8; ++c) {
+            m_stats.maxDepthReached = std::max(m_stats.maxDepthReached, node->childDepth[c]);
+            if (node->inner[c]) {
+                stack.push_back(node->inner[c].get());
+                continue;
+            }
+            ++m_stats.leafNodes;
+            if (node->refs[c].empty()) ++m_stats.emptyLeaves;
+        }
+    }
+}
+
+} // namespace nori

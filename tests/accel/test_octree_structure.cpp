@@ -1,0 +1,189 @@
+/// \file test_octree_structure.cpp
+/// \brief The octree's structure, apart from speed and answers: the shape of its cells, where
+/// large triangles go, the seed rule's depth counting, and bounds on references and bytes for
+/// any input (generated scene shapes and pathological inputs).
+#include <gtest/gtest.h>
+#include "accel/octree.h"
+#include "accel/octree_build.h"
+#include "robust_util.h"
+#include <scene_generator.h>
+#include <cmath>
+#include <map>
+#include <pcg_random.hpp>
+
+using namespace nori;
+using namespace nori::robust;
+
+namespace {
+
+using Rule = OctreeAccel::BuildRule;
+
+double aspect(const BoundingBox3f &b) { return double(b.extents().maxCoeff()) / double(b.extents().minCoeff()); }
+double volume(const BoundingBox3f &b) { return double(b.extents().x()) * b.extents().y() * b.extents().z(); }
+
+std::map<std::string, double> statsOf(const Accel &accel) {
+    std::map<std::string, double> s;
+    for (const AccelStat &st : accel.statistics()) s[st.name] = st.value;
+    return s;
+}
+
+std::unique_ptr<Accel> buildOctree(const std::string &rule, const std::vector<const Mesh *> &meshes, int maxDepth = -1,
+                                   int leafSize = -1) {
+    PropertyList p;
+    p.setString("buildRule", rule);
+    if (maxDepth >= 0) p.setInteger("maxDepth", maxDepth);
+    if (leafSize >= 0) p.setInteger("leafSize", leafSize);
+    return makeAccel("octree", p, meshes);
+}
+
+/// A small triangle (side \p s) around \p c.
+void addTriangle(MeshData &m, const Point3f &c, float s) {
+    uint32_t b = uint32_t(m.positions.size());
+    m.positions.insert(m.positions.end(), {c, c + Vector3f(s, 0, 0), c + Vector3f(0, s, s)});
+    m.faces.push_back({b, b + 1, b + 2});
+}
+
+} // namespace
+
+// The `sah` rule's children tile their cell, and no child is less cubic than its parent or
+// than 2:1: cells never become the thin slabs that every triangle crosses.
+TEST(OctreeCells, ChildrenTileTheCellAndStayNearCubic) {
+    pcg32 rng(3);
+    auto u = [&] { return float(rng() >> 8) * 0x1p-24f; };
+    for (int trial = 0; trial < 3000; ++trial) {
+        Vector3f e(std::exp(14.0f * u() - 7.0f), std::exp(14.0f * u() - 7.0f), std::exp(14.0f * u() - 7.0f));
+        Point3f o(100.0f * u() - 50.0f, 100.0f * u() - 50.0f, 100.0f * u() - 50.0f);
+        BoundingBox3f cell(o, o + e);
+        OctreeNode::Pattern p = octree_build::splitPattern(Rule::Sah, cell);
+        double sum = 0.0;
+        for (int c = 0; c < 8; ++c) {
+            BoundingBox3f child = octree_build::childCell(cell, p, c);
+            ASSERT_TRUE((child.min.array() >= cell.min.array()).all() && (child.max.array() <= cell.max.array()).all());
+            EXPECT_LE(aspect(child), std::max(2.0, aspect(cell)) * (1.0 + 1e-5)) << trial;
+            sum += volume(child);
+        }
+        EXPECT_NEAR(sum, volume(cell), 1e-5 * volume(cell)) << trial;  // inside and summing up: a tiling
+    }
+    // A strip 1000 x 3 x 25: eight slabs along it first, and within 2:1 after four levels.
+    BoundingBox3f cell(Point3f(0, 0, 0), Point3f(1000, 3, 25));
+    OctreeNode::Pattern first = octree_build::splitPattern(Rule::Sah, cell);
+    const OctreeNode::Pattern slabs{{0, 0, 0}}, octants{{0, 1, 2}};
+    EXPECT_EQ(first.code(), slabs.code());
+    for (int level = 0; level < 4; ++level) cell = octree_build::childCell(cell, octree_build::splitPattern(Rule::Sah, cell), 5);
+    EXPECT_LE(aspect(cell), 2.0 + 1e-6);
+    // The other rules split x, y and z once each: the classic octants.
+    for (Rule r : {Rule::Count, Rule::Seed})
+        EXPECT_EQ(octree_build::splitPattern(r, cell).code(), octants.code());
+}
+
+// A ground quad under many small boxes stays in the root's kept list (two references) instead
+// of being copied into every cell along the ground. The `count` rule, which copies it, is the
+// control that shows the test can fail.
+TEST(OctreeLargeTriangles, AGroundQuadIsKeptAtTheTopNotCopied) {
+    MeshData boxes;
+    for (int i = 0; i < 24; ++i)
+        for (int j = 0; j < 24; ++j) {
+            MeshData b = scaled(cube(2), 0.2f, Vector3f(-10.0f + 20.0f * i / 23.0f, 0.2f, -10.0f + 20.0f * j / 23.0f));
+            uint32_t base = uint32_t(boxes.positions.size());
+            boxes.positions.insert(boxes.positions.end(), b.positions.begin(), b.positions.end());
+            for (auto f : b.faces) boxes.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+        }
+    BoundingBox3f box;
+    for (const Point3f &p : boxes.positions) box.expandBy(p);
+    MeshData ground;
+    float y = box.min.y();
+    ground.positions = {Point3f(box.min.x(), y, box.min.z()), Point3f(box.max.x(), y, box.min.z()),
+                        Point3f(box.max.x(), y, box.max.z()), Point3f(box.min.x(), y, box.max.z())};
+    ground.faces = {{0, 1, 2}, {0, 2, 3}};
+    Mesh objects(boxes, "boxes"), quad(ground, "ground");
+
+    auto alone = statsOf(*buildOctree("sah", {&objects}));
+    auto withGround = buildOctree("sah", {&objects, &quad});
+    auto s = statsOf(*withGround);
+    std::printf("[structure] sah: refs %.0f without the ground, %.0f with it; kept %.0f\n", alone["triangle_refs"],
+                s["triangle_refs"], s["kept_refs"]);
+    EXPECT_GE(s["kept_refs"], 2.0);
+    EXPECT_LE(s["triangle_refs"], alone["triangle_refs"] + 2.0 + 0.01 * alone["triangle_refs"]);
+    uint32_t rootKept = 0;
+    dynamic_cast<const OctreeAccel &>(*withGround).forEachNode([&](const OctreeAccel::NodeView &v) {
+        if (v.depth == 0) rootKept = v.ref & OctreeNode::kKeptMask;
+    });
+    EXPECT_GE(rootKept, 2u);
+
+    auto countAlone = statsOf(*buildOctree("count", {&objects}, 16, 16));
+    auto countGround = statsOf(*buildOctree("count", {&objects, &quad}, 16, 16));
+    std::printf("[structure] count: refs %.0f without the ground, %.0f with it\n", countAlone["triangle_refs"],
+                countGround["triangle_refs"]);
+    EXPECT_GT(countGround["triangle_refs"], countAlone["triangle_refs"] + 50.0);
+}
+
+// The seed's build passes `++ctr` to the children in turn: child k of a node at depth d counts
+// as depth d + 1 + k. On a grid dense enough that every cell splits, the tree's node counts
+// follow from that rule alone: L(d) = 1 if d >= maxDepth, else the sum of L(d + 1 + k) over
+// k = 0..7 (and likewise for inner nodes), computed here independently of the build.
+TEST(OctreeSeedRule, EachLaterSiblingCountsOneLevelDeeper) {
+    const int grid = 16;
+    MeshData m;
+    for (int i = 0; i < grid; ++i)
+        for (int j = 0; j < grid; ++j)
+            for (int k = 0; k < grid; ++k)
+                addTriangle(m, Point3f((i + 0.45f) / grid, (j + 0.45f) / grid, (k + 0.45f) / grid), 0.02f / grid);
+    addTriangle(m, Point3f(0, 0, 0), 0.0f);  // pin the root cell to the unit cube
+    addTriangle(m, Point3f(1, 1, 1), 0.0f);
+    Mesh mesh(m, "grid");
+    for (int depth : {2, 3, 5}) {
+        std::function<double(int)> leaves = [&](int d) {
+            double sum = 0.0;
+            for (int k = 0; k < 8 && d < depth; ++k) sum += leaves(d + 1 + k);
+            return d >= depth ? 1.0 : sum;
+        };
+        std::function<double(int)> inner = [&](int d) {
+            double sum = 1.0;
+            for (int k = 0; k < 8 && d < depth; ++k) sum += inner(d + 1 + k);
+            return d >= depth ? 0.0 : sum;
+        };
+        auto s = statsOf(*buildOctree("seed", {&mesh}, depth, 1));
+        EXPECT_EQ(s["leaf_nodes"], leaves(0)) << "maxDepth " << depth;
+        EXPECT_EQ(s["internal_nodes"], inner(0)) << "maxDepth " << depth;
+        EXPECT_EQ(s["max_depth_reached"], depth + 7) << "maxDepth " << depth;
+        // The same input under the `count` rule: the full octree, 8^depth leaves.
+        auto c = statsOf(*buildOctree("count", {&mesh}, depth, 1));
+        EXPECT_EQ(c["leaf_nodes"], std::pow(8.0, depth)) << "maxDepth " << depth;
+    }
+}
+
+// For every generated scene shape (smaller than their defaults) the `sah` octree holds at most
+// 1.5 references per triangle and at most 100 bytes per triangle (Embree's BVH takes about 90
+// on these shapes), and every node's children lie inside the node.
+TEST(OctreeBounds, ReferencesAndBytesPerTriangleOnEveryShape) {
+    for (const gen::ShapeInfo &info : gen::shapes()) {
+        gen::GenParams params;
+        params.triangles = std::max<uint64_t>(info.minTriangles, 20000);
+        params.seed = 7;
+        gen::GeneratedScene scene = gen::generateScene(info.name, params);
+        Mesh mesh(scene.mesh, info.name);
+        auto accel = buildOctree("sah", {&mesh});
+        auto s = statsOf(*accel);
+        double n = s["triangles"];
+        std::printf("[structure] %-12s %7.0f triangles: %.3f refs/tri, %.1f bytes/tri, %.0f kept, depth %.0f\n", info.name,
+                    n, s["triangle_refs"] / n, s["bytes"] / n, s["kept_refs"], s["max_depth_reached"]);
+        EXPECT_LE(s["triangle_refs"], 1.5 * n) << info.name;
+        EXPECT_LE(s["bytes"], 100.0 * n + 65536.0) << info.name;
+        // Child boxes nest: each child's box lies in its parent's box (the root's is unbounded).
+        const auto &octree = dynamic_cast<const OctreeAccel &>(*accel);
+        std::map<uint32_t, BoundingBox3f> boxOf;
+        octree.forEachNode([&](const OctreeAccel::NodeView &v) {
+            for (int c = 0; c < 8; ++c) {
+                BoundingBox3f b(Point3f(v.node.box[0][c], v.node.box[1][c], v.node.box[2][c]),
+                                Point3f(v.node.box[0][8 + c], v.node.box[1][8 + c], v.node.box[2][8 + c]));
+                if (!b.isValid()) continue;
+                if (boxOf.count(v.index)) {
+                    const BoundingBox3f &parent = boxOf[v.index];
+                    EXPECT_TRUE((b.min.array() >= parent.min.array()).all() && (b.max.array() <= parent.max.array()).all())
+                        << info.name << ": node " << v.index << " child " << c;
+                }
+                if (v.node.count[c] & OctreeNode::kInner) boxOf[v.node.child[c]] = b;
+            }
+        });
+    }
+}
