@@ -100,16 +100,8 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
     for (uint32_t i = 0; i < n; ++i) {
         const std::array<Point3f, 3> &p = vertices[prims[i]];
         std::memcpy(rows + size_t(9) * n + i, &prims[i], sizeof(uint32_t));
-        for (int c = 0; c < 3; ++c) {
-            rows[(0 + c) * n + i] = p[0][c];
-            if (m_kind == Intersector::MT) {
-                rows[(3 + c) * n + i] = p[1][c] - p[0][c];
-                rows[(6 + c) * n + i] = p[2][c] - p[0][c];
-            } else {
-                rows[(3 + c) * n + i] = p[1][c];
-                rows[(6 + c) * n + i] = p[2][c];
-            }
-        }
+        for (int v = 0; v < 3; ++v)
+            for (int c = 0; c < 3; ++c) rows[(3 * v + c) * n + i] = p[v][c];
     }
     if (n <= 16) return;
     // Chunk boxes, structure of arrays: rows min x, y, z, max x, y, z of nc floats.
@@ -149,25 +141,107 @@ struct Step {
     VMask<L> hit;
 };
 
-/// Möller & Trumbore 1997: Cramer's rule on [-d, e1, e2] (t, u, v) = o - v0, on rows
-/// v0, e1 = v1 - v0, e2 = v2 - v0. Known leaks: u, v and u + v are rounded independently for
-/// the two triangles of a shared edge, so a ray through (or within a few ulps of) the edge can
-/// miss both; tests/accel/test_triangle_decisions.cpp measures how often.
+/// Scale of the problem for the t error estimates, in units of t: |d|_inf = |d[kz]|, 1 / |d|_inf
+/// and |o|_inf / |d|_inf (the origin's magnitude). Computed only in steps with a hit.
+struct TScale {
+    float dInf, rcpDInf, oScale;
+    explicit TScale(const TriangleRay &r)
+        : dInf(std::abs(r.d[r.kz])), rcpDInf(std::abs(r.sz)),
+          oScale(std::max({std::abs(r.o[0]), std::abs(r.o[1]), std::abs(r.o[2])}) * std::abs(r.sz)) {}
+};
+
+/// x rounded to float, except that a nonzero x too small for a float keeps its sign (as the
+/// smallest subnormal): only the sign of an edge function (or of t) decides a hit.
+inline float signedFloat(double x) {
+    const float f = float(x);
+    return f != 0.0f || x == 0.0 ? f : std::copysign(std::numeric_limits<float>::denorm_min(), f);
+}
+
+/// The lanes of \p redo get t again from the plane equation in double precision,
+/// t = n.(p0 - o) / (n.d) with n = (p1 - p0) x (p2 - p0), on the stored (exact) corners; the
+/// other lanes keep \p t. The differences of floats are exact in double (up to a relative 2^-53
+/// when their exponents are more than 29 apart), so the result is t of the exact triangle and
+/// ray up to a few double roundings amplified by the triangle's shape and the ray's grazing
+/// angle: far below float precision. Rare and out of line: taken where the float t's error
+/// estimate exceeds its tolerance.
+template <int L>
+[[gnu::noinline, gnu::cold]] VFloat<L> exactPlaneT(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n,
+                                                    uint32_t i, VFloat<L> t) {
+    float out[L];
+    t.storeu(out);
+    for (unsigned b = bits(redo); b; b &= b - 1) {
+        const int j = __builtin_ctz(b);
+        double p[3][3];
+        for (int v = 0; v < 3; ++v)
+            for (int c = 0; c < 3; ++c) p[v][c] = rows[size_t(3 * v + c) * n + i + uint32_t(j)];
+        double e1[3], e2[3], w[3];
+        for (int c = 0; c < 3; ++c) {
+            e1[c] = p[1][c] - p[0][c];
+            e2[c] = p[2][c] - p[0][c];
+            w[c] = p[0][c] - double(r.o[c]);
+        }
+        const double nx = e1[1] * e2[2] - e1[2] * e2[1], ny = e1[2] * e2[0] - e1[0] * e2[2],
+                     nz = e1[0] * e2[1] - e1[1] * e2[0];
+        const double num = nx * w[0] + ny * w[1] + nz * w[2];
+        const double den = nx * double(r.d[0]) + ny * double(r.d[1]) + nz * double(r.d[2]);
+        if (den == 0.0) continue;  // the ray lies in the plane: the float t stays (see below)
+        const double te = num / den;
+        // The float edge test let the lane through (Woop et al.'s decision, kept). Where the
+        // exact crossing lies off the triangle (a barycentric coordinate below -2^-24, about
+        // the rounding of this double computation on a sliver), i.e. for a ray within the
+        // edge test's rounding of an edge at a grazing angle or on a needle whose plane is
+        // ill-conditioned, the float t stays: it is consistent with the edge test (a convex
+        // combination of the corners' z). Either way the hit point lies on its triangle up to
+        // rounding, so every accelerator holding the triangle finds the same closest hit.
+        const double x[3] = {te * r.d[0] - w[0], te * r.d[1] - w[1], te * r.d[2] - w[2]};  // crossing - p0
+        const double tol = 0x1p-24 * (nx * nx + ny * ny + nz * nz);
+        bool inside = true;
+        for (int k = 0; k < 3 && inside; ++k) {
+            // Edge k from corner k to corner k + 1, relative to p0.
+            double a[3], e[3], q[3];
+            for (int c = 0; c < 3; ++c) {
+                a[c] = k == 0 ? 0.0 : k == 1 ? e1[c] : e2[c];
+                const double bc = k == 0 ? e1[c] : k == 1 ? e2[c] : 0.0;
+                e[c] = bc - a[c];
+                q[c] = x[c] - a[c];
+            }
+            // (e x q).n = |n|^2 times the barycentric coordinate of the corner opposite edge k.
+            const double side = (e[1] * q[2] - e[2] * q[1]) * nx + (e[2] * q[0] - e[0] * q[2]) * ny + (e[0] * q[1] - e[1] * q[0]) * nz;
+            inside = side >= -tol;
+        }
+        if (inside) out[j] = signedFloat(te);
+    }
+    return VFloat<L>::loadu(out);
+}
+
+/// Möller & Trumbore 1997: Cramer's rule on [-d, e1, e2] (t, u, v) = o - p0, with the edges
+/// e1 = p1 - p0, e2 = p2 - p0 rounded to float in the kernel. Known leaks: u, v and u + v are
+/// rounded independently for the two triangles of a shared edge, so a ray through (or within a
+/// few ulps of) the edge can miss both; tests/accel/test_triangle_decisions.cpp measures how
+/// often.
+///
+/// t's rounding error grows like u |e1| |e2| |d| / |det| (the shape of the triangle over the
+/// sine of the ray's angle to it: large on slivers, where det and e2.q are cross products of
+/// nearly parallel edges) times (|o - p0| + t |d|). Where that first-order estimate (with a
+/// factor 2 of margin) exceeds 2^-19 of the problem's scale (t and |o| in units of |d|_inf), t is
+/// recomputed from the plane equation in double (exactPlaneT): the remedy of computing the
+/// distance from the plane where the edge-based t is ill-conditioned, only where it is.
 template <int L>
 [[gnu::always_inline]] inline Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
     using F = VFloat<L>;
     const F dx = r.d[0], dy = r.d[1], dz = r.d[2];
-    F e1x = loadRow(rows, n, 3, i, m), e1y = loadRow(rows, n, 4, i, m), e1z = loadRow(rows, n, 5, i, m);
-    F e2x = loadRow(rows, n, 6, i, m), e2y = loadRow(rows, n, 7, i, m), e2z = loadRow(rows, n, 8, i, m);
+    const F p0x = loadRow(rows, n, 0, i, m), p0y = loadRow(rows, n, 1, i, m), p0z = loadRow(rows, n, 2, i, m);
+    const F e1x = loadRow(rows, n, 3, i, m) - p0x, e1y = loadRow(rows, n, 4, i, m) - p0y, e1z = loadRow(rows, n, 5, i, m) - p0z;
+    const F e2x = loadRow(rows, n, 6, i, m) - p0x, e2y = loadRow(rows, n, 7, i, m) - p0y, e2z = loadRow(rows, n, 8, i, m) - p0z;
     F px = dy * e2z - dz * e2y;
     F py = dz * e2x - dx * e2z;
     F pz = dx * e2y - dy * e2x;
     F det = e1x * px + e1y * py + e1z * pz;
     VMask<L> valid = m & (det != 0.0f);
     F invDet = F(1.0f) / det;
-    F tx = F(r.o[0]) - loadRow(rows, n, 0, i, m);
-    F ty = F(r.o[1]) - loadRow(rows, n, 1, i, m);
-    F tz = F(r.o[2]) - loadRow(rows, n, 2, i, m);
+    F tx = F(r.o[0]) - p0x;
+    F ty = F(r.o[1]) - p0y;
+    F tz = F(r.o[2]) - p0z;
     F u = (tx * px + ty * py + tz * pz) * invDet;
     // Reject u < 0 or u > 1 (ordered compares: a NaN is rejected by the t test below).
     valid = valid & ~((u < 0.0f) | (u > 1.0f));
@@ -178,15 +252,16 @@ template <int L>
     F v = (dx * qx + dy * qy + dz * qz) * invDet;
     valid = valid & ~((v < 0.0f) | (u + v > 1.0f));
     F t = (e2x * qx + e2y * qy + e2z * qz) * invDet;
+    if (any(valid)) {
+        const F e1 = max(max(abs(e1x), abs(e1y)), abs(e1z)), e2 = max(max(abs(e2x), abs(e2y)), abs(e2z));
+        const F w = max(max(abs(tx), abs(ty)), abs(tz)), at = abs(t);
+        const TScale sc(r);
+        const F err = F(0x1p-23f) * (e1 * e2 * F(sc.dInf) * abs(invDet)) * (w * F(sc.rcpDInf) + at);
+        const VMask<L> redo = valid & ~(err <= F(0x1p-19f) * (at + F(sc.oScale)));  // NaN: redo
+        if (any(redo)) t = exactPlaneT(redo, r, rows, n, i, t);
+    }
     valid = valid & (t >= r.mint) & (t <= maxt);
     return {t, u, v, valid};
-}
-
-/// x rounded to float, except that a nonzero x too small for a float keeps its sign (as the
-/// smallest subnormal): only the sign of an edge function decides a hit.
-inline float signedFloat(double x) {
-    const float f = float(x);
-    return f != 0.0f || x == 0.0 ? f : std::copysign(std::numeric_limits<float>::denorm_min(), f);
 }
 
 /// Sheared corners (ax, ay, bx, by, cx, cy) and edge functions of one watertight step.
@@ -223,6 +298,11 @@ template <int L>
 
 /// Woop, Benthin & Wald 2013 (JCGT 2(1)) on rows p0, p1, p2: vertices relative to the origin,
 /// sheared so that the ray is the +z axis, then 2D edge functions; both windings hit.
+/// The hit decision is the paper's (exact edge signs); t = sum E_i z_i / sum E_i comes from the
+/// same sheared corners, whose rounding errors scale with their distance |p - o| from the ray
+/// origin, not with t: on a triangle much larger than the hit distance (a 2000-unit ground seen
+/// from 6 units) t is off by more than the distance to the plane, and a ray leaving the surface
+/// re-hits it. Those lanes get t from the plane equation in double (exactPlaneT).
 template <int L>
 [[gnu::always_inline]] inline Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
     using F = VFloat<L>;
@@ -249,9 +329,26 @@ template <int L>
     if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
     F det = U + V + W;
     valid = valid & (det != 0.0f);
-    F T = U * (sz * az) + V * (sz * bz) + W * (sz * cz);
+    const F za = sz * az, zb = sz * bz, zc = sz * cz;
+    F T = U * za + V * zb + W * zc;
     F invDet = F(1.0f) / det;
     F t = T * invDet;
+    // t's error, first order, in units of |d|_inf (with a factor 4 of margin): the sheared
+    // corners carry absolute errors of a few u times their magnitudes (u (|x, y|_max +
+    // 2 |z|_max)), and the rounding of the edge functions moves the point they weigh by up to
+    // ~6u M^3 / |det| across the triangle (M = |x, y|_max), which the plane's slope turns into an
+    // error off the plane of the same size: large on slivers and grazing rays. Beyond 2^-19 of
+    // the problem's scale (t, |o|), i.e. on triangles much larger than their distance to the
+    // origin and on slivers, t comes from the plane equation in double instead.
+    if (any(valid)) {
+        const F zmax = max(max(abs(za), abs(zb)), abs(zc));
+        const F xymax = max(max(max(abs(ax), abs(ay)), max(abs(bx), abs(by))), max(abs(cx), abs(cy)));
+        const TScale sc(r);
+        const F shape = xymax * xymax * xymax * abs(invDet);
+        const F err = F(0x1p-22f) * ((xymax + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
+        const VMask<L> redo = valid & ~(err <= F(0x1p-19f) * (abs(t) + F(sc.oScale)));  // NaN: redo
+        if (any(redo)) t = exactPlaneT(redo, r, rows, n, i, t);
+    }
     valid = valid & (t >= r.mint) & (t <= maxt);
     return {t, V * invDet, W * invDet, valid};
 }

@@ -46,8 +46,8 @@ struct TriangleRay {
 /// \brief Triangles of all meshes, copied in the order the accelerator's leaves visit them.
 ///
 /// A leaf of n triangles is one block of words at an offset chosen by its owner: nine rows of
-/// n floats (MT: v0, e1 = v1 - v0, e2 = v2 - v0; watertight: v0, v1, v2; each row x, y, z),
-/// then the n global triangle ids, then (for n > 16) one bounding box per 16-triangle chunk.
+/// n floats (the corners v0, v1, v2, each row x, y, z, for both intersectors: either may
+/// recompute t on the exact triangle), then the n global triangle ids, then (for n > 16) one bounding box per 16-triangle chunk.
 /// Structure-of-arrays rows let the SIMD kernels load 16 triangles with masked loads and no
 /// padding; the triangles of a leaf are ordered so that each chunk is spatially compact, and a
 /// chunk whose box the ray misses is skipped.

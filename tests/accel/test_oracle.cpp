@@ -241,17 +241,6 @@ std::vector<SceneCase> sceneCases() {
     return cases;
 }
 
-/// (scene, intersector) pairs whose unexplained disagreements are kernel precision faults, each
-/// with a minimal reproducing ray in test_kernel_precision.cpp (KnownBug.*): the watertight
-/// kernel's t on triangles far larger than their distance to the ray origin (the 2000-unit
-/// ground of tabletop, the stadium's field), and Möller-Trumbore's t on slivers (grass blades).
-/// SceneOracle prints their counts without asserting them; KnownBugSceneOracle asserts them and
-/// is registered in ctest as an expected failure until the kernels are fixed.
-bool knownKernelFault(const std::string &scene, const std::string &intersector) {
-    return (intersector == "watertight" && (scene == "tabletop" || scene == "stadium")) ||
-           (intersector == "mt" && scene == "grass");
-}
-
 /// Verdict counts of \p intersector (simd traversal, leaf size \p leafSize) on every set.
 std::vector<std::array<size_t, VerdictCount>> sceneVerdicts(const LoadedScene &s, const EmbreeOracle &oracle,
                                                               const std::vector<RaySet> &sets, const char *traversal,
@@ -284,17 +273,14 @@ TEST_P(SceneOracle, ExactTraversalsAgreeWithEmbree) {
                               {"simd", "watertight", 16}};
     for (const Config &cfg : configs) {
         auto verdicts = sceneVerdicts(s, oracle, sets, cfg.traversal, cfg.intersector, cfg.leafSize);
-        bool known = knownKernelFault(GetParam().name, cfg.intersector);
         for (size_t k = 0; k < sets.size(); ++k) {
             const auto &counts = verdicts[k];
             std::printf("[oracle] %-12s %-6s %-10s leaf %3d %-7s rays %6zu:", GetParam().name.c_str(), cfg.traversal,
                         cfg.intersector, cfg.leafSize, sets[k].name.c_str(), sets[k].rays.size());
             for (int v = 0; v < VerdictCount; ++v) std::printf(" %s %zu", verdictName(v), counts[v]);
-            std::printf("%s\n", known && counts[Unexplained] ? "  (known kernel fault: KnownBugSceneOracle)" : "");
-            if (!known) {
-                EXPECT_EQ(counts[Unexplained], 0u) << cfg.traversal << "/" << cfg.intersector << "/leafSize "
-                                                   << cfg.leafSize << " on " << sets[k].name;
-            }
+            std::printf("\n");
+            EXPECT_EQ(counts[Unexplained], 0u) << cfg.traversal << "/" << cfg.intersector << "/leafSize " << cfg.leafSize
+                                               << " on " << sets[k].name;
         }
     }
 }
@@ -364,36 +350,9 @@ TEST_P(SceneOracle, SpawnedRaysNeverHitTheTriangleTheyLeave) {
                     "embree default %zu\n",
                     GetParam().name.c_str(), set.name.c_str(), set.rays.size(), selfHits[0].load(), selfHits[1].load(),
                     selfHits[2].load(), selfHits[3].load());
-        for (size_t a = 0; a < 4; ++a) {
-            bool known = a == 0 && knownKernelFault(GetParam().name, "watertight");
-            if (!known) {
-                EXPECT_EQ(selfHits[a].load(), 0u) << set.name << ", answer " << a;
-            }
-        }
+        for (size_t a = 0; a < 4; ++a) EXPECT_EQ(selfHits[a].load(), 0u) << set.name << ", answer " << a;
     }
 }
-
-/// The known kernel faults, asserted: expected to fail until the kernels are fixed (ctest
-/// WILL_FAIL, tests/CMakeLists.txt), then to move back into SceneOracle.
-class KnownBugSceneOracle : public testing::TestWithParam<SceneCase> {};
-
-TEST_P(KnownBugSceneOracle, ZeroUnexplained) {
-    LoadedScene s;
-    ASSERT_TRUE(s.load(GetParam()));
-    EmbreeOracle oracle(s.meshes);
-    std::vector<RaySet> sets = sceneRaySets(s, oracle);
-    for (const char *intersector : {"watertight", "mt"}) {
-        if (!knownKernelFault(GetParam().name, intersector)) continue;
-        auto verdicts = sceneVerdicts(s, oracle, sets, "simd", intersector, 512);
-        for (size_t k = 0; k < sets.size(); ++k)
-            EXPECT_EQ(verdicts[k][Unexplained], 0u) << intersector << " on " << sets[k].name;
-    }
-}
-
-INSTANTIATE_TEST_SUITE_P(KnownBugScenes, KnownBugSceneOracle,
-                         testing::Values(SceneCase{"tabletop", "tabletop", ""}, SceneCase{"stadium", "stadium", ""},
-                                         SceneCase{"grass", "grass", ""}),
-                         sceneCaseName);
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SceneOracle, testing::ValuesIn(sceneCases()), sceneCaseName);
 
