@@ -67,6 +67,14 @@ public:
 
     /// \brief Number of samples rejected since the last clear() (non-finite value or position).
     uint64_t droppedSamples() const { return m_dropped; }
+    /// \brief Set the rejected-sample count (of a block received from another process).
+    void setDroppedSamples(uint64_t count) { m_dropped = count; }
+
+    /// \brief The accumulated (r, g, b, weight) of every storage pixel, border included, row by
+    /// row: storageSize() floats. This is what travels when another process renders the block.
+    const float *storage() const { return m_data.data(); }
+    float *storage() { return m_data.data(); }
+    size_t storageSize() const { return m_data.size(); }
 
     /// \brief Filter weight for a 1D distance \p x from a pixel centre, from the lookup table
     /// (linear interpolation between FilterResolution + 1 samples over [0, radius]).

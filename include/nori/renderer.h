@@ -3,7 +3,9 @@
 #pragma once
 
 #include <nori/bitmap.h>
+#include <nori/block_exchange.h>
 #include <atomic>
+#include <vector>
 
 namespace nori {
 
@@ -14,6 +16,7 @@ struct RenderSettings {
     int threads = 0;                             ///< 1: a plain loop; otherwise oneTBB
     bool progress = true;                        ///< progress display on stderr
     const std::atomic<bool> *cancel = nullptr;   ///< set (e.g. by SIGINT) to stop after blocks in flight
+    BlockExchange *exchange = nullptr;           ///< shares the blocks with other processes; nullptr: render them all here
 };
 
 /// \brief What a render produced.
@@ -28,6 +31,7 @@ struct RenderResult {
     uint64_t shadowRays = 0;    ///< any-hit queries (shadow rays)
     uint64_t droppedSamples = 0;///< non-finite samples left out of the image
     double milliseconds = 0.0;
+    std::vector<RankShare> ranks;///< per process, rank by rank, when an exchange shared the render (else empty)
 };
 
 /// \brief Renders a scene in 32x32 blocks. Each block has its own sampler seeded by the

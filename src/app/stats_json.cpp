@@ -25,6 +25,21 @@ std::string statsJson(const RunFigures &run, const Scene &scene, const RenderRes
     json["rays_shadow"] = result.shadowRays;
     json["mrays_per_s"] = result.milliseconds > 0.0 ? result.rays / (result.milliseconds * 1e3) : 0.0;
     json["complete"] = result.complete;
+    // Under mpirun: each rank's share of the blocks and rays (threads is per rank).
+    if (!result.ranks.empty()) {
+        json["processes"] = result.ranks.size();
+        nlohmann::ordered_json ranks = nlohmann::ordered_json::array();
+        for (const RankShare &share : result.ranks) {
+            nlohmann::ordered_json entry;
+            entry["blocks"] = share.blocks;
+            entry["rays"] = share.closestHitRays + share.shadowRays;
+            entry["rays_camera"] = share.cameraRays;
+            entry["rays_closest_hit"] = share.closestHitRays;
+            entry["rays_shadow"] = share.shadowRays;
+            ranks.push_back(entry);
+        }
+        json["ranks"] = ranks;
+    }
     // The accelerator's own statistics (build_ms, triangles, node counts, bytes, ...).
     for (const AccelStat &stat : accel.statistics()) {
         if (stat.integral) json[stat.name] = (long long)stat.value;

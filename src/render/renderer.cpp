@@ -14,14 +14,8 @@ namespace nori {
 
 namespace {
 
-/// Rays of one block, by kind.
-struct BlockRays {
-    uint64_t camera = 0;
-    Scene::RayCounts traced;
-};
-
 /// Renders one block: every pixel, every sample, splatted with the camera's filter.
-BlockRays renderBlock(const Scene &scene, Sampler &sampler, ImageBlock &block) {
+BlockTally renderBlock(const Scene &scene, Sampler &sampler, ImageBlock &block) {
     const Camera &camera = scene.camera();
     const Integrator &integrator = scene.integrator();
     const Point2i offset = block.offset();
@@ -37,11 +31,12 @@ BlockRays renderBlock(const Scene &scene, Sampler &sampler, ImageBlock &block) {
                 block.put(pixel, weight * integrator.Li(scene, sampler, ray));
             }
     const Scene::RayCounts after = Scene::threadRayCounts();
-    BlockRays rays;
-    rays.camera = uint64_t(size.x()) * uint64_t(size.y()) * uint64_t(spp);
-    rays.traced.closestHit = after.closestHit - before.closestHit;
-    rays.traced.shadow = after.shadow - before.shadow;
-    return rays;
+    BlockTally tally;
+    tally.cameraRays = uint64_t(size.x()) * uint64_t(size.y()) * uint64_t(spp);
+    tally.closestHitRays = after.closestHit - before.closestHit;
+    tally.shadowRays = after.shadow - before.shadow;
+    tally.droppedSamples = block.droppedSamples();
+    return tally;
 }
 
 /// Collects finished blocks and adds them to the image strictly in block-index order:
@@ -89,23 +84,39 @@ RenderResult BlockRenderer::render(const RenderSettings &settings) const {
     std::atomic<int> rendered{0};
     std::atomic<uint64_t> cameraRays{0}, closestHitRays{0}, shadowRays{0}, dropped{0};
     auto cancelled = [&] { return settings.cancel && settings.cancel->load(); };
+    // A finished block joins this process's image (from this process or, through the exchange,
+    // from another one).
+    auto merge = [&](int index, ImageBlock &&block, const BlockTally &tally) {
+        cameraRays += tally.cameraRays;
+        closestHitRays += tally.closestHitRays;
+        shadowRays += tally.shadowRays;
+        dropped += tally.droppedSamples;
+        merger.add(index, std::move(block));
+        ++rendered;
+        progress.advance();
+    };
+    BlockExchange *exchange = settings.exchange;
     auto work = [&](int index) {
         if (cancelled()) return;
         ImageBlock block(Vector2i(32, 32), filter);
         generator.prepare(index, block);
         std::unique_ptr<Sampler> sampler = m_scene.sampler().clone();
         sampler->prepare(uint64_t(index));
-        BlockRays rays = renderBlock(m_scene, *sampler, block);
-        cameraRays += rays.camera;
-        closestHitRays += rays.traced.closestHit;
-        shadowRays += rays.traced.shadow;
-        dropped += block.droppedSamples();
-        merger.add(index, std::move(block));
-        ++rendered;
-        progress.advance();
+        BlockTally tally = renderBlock(m_scene, *sampler, block);
+        if (exchange) exchange->deliver(index, std::move(block), tally);
+        else merge(index, std::move(block), tally);
     };
 
-    if (settings.threads == 1) {
+    if (exchange) {
+        // Blocks come from the exchange, one claim at a time, until it has none left for us.
+        exchange->start(generator, filter, merge);
+        auto claimLoop = [&] {
+            for (int index; !cancelled() && exchange->claim(index);) work(index);
+        };
+        if (settings.threads == 1) claimLoop();
+        else tbb::parallel_for(0, std::max(1, settings.threads), [&](int) { claimLoop(); }, tbb::simple_partitioner());
+        exchange->finish();
+    } else if (settings.threads == 1) {
         for (int i = 0; i < generator.blockCount(); ++i) work(i);
     } else {
         // One task per block; tbb::global_control (set by the caller) bounds the threads.
@@ -128,6 +139,7 @@ RenderResult BlockRenderer::render(const RenderSettings &settings) const {
     result.shadowRays = shadowRays.load();
     result.rays = result.closestHitRays + result.shadowRays;
     result.droppedSamples = dropped.load() + image.droppedSamples();
+    if (exchange) result.ranks = exchange->shares();
     result.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result;
 }
