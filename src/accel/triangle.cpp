@@ -212,22 +212,13 @@ template <int L>
         // ill-conditioned, the float t stays: it is consistent with the edge test (a convex
         // combination of the corners' z). Either way the hit point lies on its triangle up to
         // rounding, so every accelerator holding the triangle finds the same closest hit.
-        const double x[3] = {te * r.d[0] - w[0], te * r.d[1] - w[1], te * r.d[2] - w[2]};  // crossing - p0
-        const double tol = 0x1p-24 * (nx * nx + ny * ny + nz * nz);
-        bool inside = true;
-        for (int k = 0; k < 3 && inside; ++k) {
-            // Edge k from corner k to corner k + 1, relative to p0.
-            double a[3], e[3], q[3];
-            for (int c = 0; c < 3; ++c) {
-                a[c] = k == 0 ? 0.0 : k == 1 ? e1[c] : e2[c];
-                const double bc = k == 0 ? e1[c] : k == 1 ? e2[c] : 0.0;
-                e[c] = bc - a[c];
-                q[c] = x[c] - a[c];
-            }
-            // (e x q).n = |n|^2 times the barycentric coordinate of the corner opposite edge k.
-            const double side = (e[1] * q[2] - e[2] * q[1]) * nx + (e[2] * q[0] - e[0] * q[2]) * ny + (e[0] * q[1] - e[1] * q[0]) * nz;
-            inside = side >= -tol;
-        }
+        // Barycentrics of the crossing x = b1 e1 + b2 e2 (relative to p0), times |n|^2:
+        // (x x e2).n = b1 |n|^2 and (e1 x x).n = b2 |n|^2.
+        const double x[3] = {te * r.d[0] - w[0], te * r.d[1] - w[1], te * r.d[2] - w[2]};
+        const double nn = nx * nx + ny * ny + nz * nz, tol = 0x1p-24 * nn;
+        const double s1 = (x[1] * e2[2] - x[2] * e2[1]) * nx + (x[2] * e2[0] - x[0] * e2[2]) * ny + (x[0] * e2[1] - x[1] * e2[0]) * nz;
+        const double s2 = (e1[1] * x[2] - e1[2] * x[1]) * nx + (e1[2] * x[0] - e1[0] * x[2]) * ny + (e1[0] * x[1] - e1[1] * x[0]) * nz;
+        const bool inside = s1 >= -tol && s2 >= -tol && nn - s1 - s2 >= -tol;
         if (inside) out[j] = signedFloat(te);
     }
     return VFloat<L>::loadu(out);
