@@ -150,6 +150,20 @@ struct TScale {
           oScale(std::max({std::abs(r.o[0]), std::abs(r.o[1]), std::abs(r.o[2])}) * std::abs(r.sz)) {}
 };
 
+/// The lanes of \p valid whose float t, with first-order error estimate \p err, needs the double
+/// t: err exceeds 2^-19 of the problem's scale (|t| + |o|_inf / |d|_inf), unless the lane lies
+/// behind mint by more than err, or beyond maxt by more than 4 err (then the float range test
+/// rejects it, as it would the exact t: the lanes behind the origin or far beyond the closest hit
+/// so far, most lanes of a huge triangle). The wider margin beyond maxt keeps the choice
+/// between float and double t independent of the order in which an accelerator visits leaves
+/// (maxt is the closest hit so far) wherever the estimate holds within a factor 4. A NaN
+/// estimate takes the double path.
+template <int L>
+inline VMask<L> needsExactT(VMask<L> valid, VFloat<L> t, VFloat<L> err, float oScale, float mint, float maxt) {
+    const VMask<L> outside = (t + err < mint) | (t - VFloat<L>(4.0f) * err > maxt);
+    return valid & ~(err <= VFloat<L>(0x1p-19f) * (abs(t) + oScale)) & ~outside;
+}
+
 /// x rounded to float, except that a nonzero x too small for a float keeps its sign (as the
 /// smallest subnormal): only the sign of an edge function (or of t) decides a hit.
 inline float signedFloat(double x) {
@@ -163,14 +177,19 @@ inline float signedFloat(double x) {
 /// when their exponents are more than 29 apart), so the result is t of the exact triangle and
 /// ray up to a few double roundings amplified by the triangle's shape and the ray's grazing
 /// angle: far below float precision. Rare and out of line: taken where the float t's error
-/// estimate exceeds its tolerance.
+/// estimate exceeds its tolerance. A lane holding \p skipPrim (the closest hit so far, met again
+/// in another leaf) is no hit: its t is known already.
 template <int L>
 [[gnu::noinline, gnu::cold]] VFloat<L> exactPlaneT(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n,
-                                                    uint32_t i, VFloat<L> t) {
+                                                    uint32_t i, VFloat<L> t, uint32_t skipPrim) {
     float out[L];
     t.storeu(out);
     for (unsigned b = bits(redo); b; b &= b - 1) {
         const int j = __builtin_ctz(b);
+        if (primAt(rows, n, i + uint32_t(j)) == skipPrim) {  // already the closest hit: no news
+            out[j] = std::numeric_limits<float>::quiet_NaN();
+            continue;
+        }
         double p[3][3];
         for (int v = 0; v < 3; ++v)
             for (int c = 0; c < 3; ++c) p[v][c] = rows[size_t(3 * v + c) * n + i + uint32_t(j)];
@@ -193,22 +212,13 @@ template <int L>
         // ill-conditioned, the float t stays: it is consistent with the edge test (a convex
         // combination of the corners' z). Either way the hit point lies on its triangle up to
         // rounding, so every accelerator holding the triangle finds the same closest hit.
-        const double x[3] = {te * r.d[0] - w[0], te * r.d[1] - w[1], te * r.d[2] - w[2]};  // crossing - p0
-        const double tol = 0x1p-24 * (nx * nx + ny * ny + nz * nz);
-        bool inside = true;
-        for (int k = 0; k < 3 && inside; ++k) {
-            // Edge k from corner k to corner k + 1, relative to p0.
-            double a[3], e[3], q[3];
-            for (int c = 0; c < 3; ++c) {
-                a[c] = k == 0 ? 0.0 : k == 1 ? e1[c] : e2[c];
-                const double bc = k == 0 ? e1[c] : k == 1 ? e2[c] : 0.0;
-                e[c] = bc - a[c];
-                q[c] = x[c] - a[c];
-            }
-            // (e x q).n = |n|^2 times the barycentric coordinate of the corner opposite edge k.
-            const double side = (e[1] * q[2] - e[2] * q[1]) * nx + (e[2] * q[0] - e[0] * q[2]) * ny + (e[0] * q[1] - e[1] * q[0]) * nz;
-            inside = side >= -tol;
-        }
+        // Barycentrics of the crossing x = b1 e1 + b2 e2 (relative to p0), times |n|^2:
+        // (x x e2).n = b1 |n|^2 and (e1 x x).n = b2 |n|^2.
+        const double x[3] = {te * r.d[0] - w[0], te * r.d[1] - w[1], te * r.d[2] - w[2]};
+        const double nn = nx * nx + ny * ny + nz * nz, tol = 0x1p-24 * nn;
+        const double s1 = (x[1] * e2[2] - x[2] * e2[1]) * nx + (x[2] * e2[0] - x[0] * e2[2]) * ny + (x[0] * e2[1] - x[1] * e2[0]) * nz;
+        const double s2 = (e1[1] * x[2] - e1[2] * x[1]) * nx + (e1[2] * x[0] - e1[0] * x[2]) * ny + (e1[0] * x[1] - e1[1] * x[0]) * nz;
+        const bool inside = s1 >= -tol && s2 >= -tol && nn - s1 - s2 >= -tol;
         if (inside) out[j] = signedFloat(te);
     }
     return VFloat<L>::loadu(out);
@@ -223,11 +233,12 @@ template <int L>
 /// t's rounding error grows like u |e1| |e2| |d| / |det| (the shape of the triangle over the
 /// sine of the ray's angle to it: large on slivers, where det and e2.q are cross products of
 /// nearly parallel edges) times (|o - p0| + t |d|). Where that first-order estimate (with a
-/// factor 2 of margin) exceeds 2^-19 of the problem's scale (t and |o| in units of |d|_inf), t is
-/// recomputed from the plane equation in double (exactPlaneT): the remedy of computing the
+/// factor 2 of margin) exceeds 2^-19 of the problem's scale (needsExactT), t is recomputed
+/// from the plane equation in double (exactPlaneT): the remedy of computing the
 /// distance from the plane where the edge-based t is ill-conditioned, only where it is.
 template <int L>
-[[gnu::always_inline]] inline Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
+[[gnu::always_inline]] inline Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt,
+                                                     uint32_t skipPrim) {
     using F = VFloat<L>;
     const F dx = r.d[0], dy = r.d[1], dz = r.d[2];
     const F p0x = loadRow(rows, n, 0, i, m), p0y = loadRow(rows, n, 1, i, m), p0z = loadRow(rows, n, 2, i, m);
@@ -254,11 +265,11 @@ template <int L>
     F t = (e2x * qx + e2y * qy + e2z * qz) * invDet;
     if (any(valid)) {
         const F e1 = max(max(abs(e1x), abs(e1y)), abs(e1z)), e2 = max(max(abs(e2x), abs(e2y)), abs(e2z));
-        const F w = max(max(abs(tx), abs(ty)), abs(tz)), at = abs(t);
+        const F w = max(max(abs(tx), abs(ty)), abs(tz));
         const TScale sc(r);
-        const F err = F(0x1p-23f) * (e1 * e2 * F(sc.dInf) * abs(invDet)) * (w * F(sc.rcpDInf) + at);
-        const VMask<L> redo = valid & ~(err <= F(0x1p-19f) * (at + F(sc.oScale)));  // NaN: redo
-        if (any(redo)) t = exactPlaneT(redo, r, rows, n, i, t);
+        const F err = F(0x1p-23f) * (e1 * e2 * F(sc.dInf) * abs(invDet)) * (w * F(sc.rcpDInf) + abs(t));
+        const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt);
+        if (any(redo)) t = exactPlaneT(redo, r, rows, n, i, t, skipPrim);
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
     return {t, u, v, valid};
@@ -304,7 +315,8 @@ template <int L>
 /// from 6 units) t is off by more than the distance to the plane, and a ray leaving the surface
 /// re-hits it. Those lanes get t from the plane equation in double (exactPlaneT).
 template <int L>
-[[gnu::always_inline]] inline Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt) {
+[[gnu::always_inline]] inline Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt,
+                                                 uint32_t skipPrim) {
     using F = VFloat<L>;
     const F ox = r.o[r.kx], oy = r.o[r.ky], oz = r.o[r.kz], sx = r.sx, sy = r.sy, sz = r.sz;
     F az = loadRow(rows, n, r.kz, i, m) - oz;
@@ -338,25 +350,27 @@ template <int L>
     // 2 |z|_max)), and the rounding of the edge functions moves the point they weigh by up to
     // ~6u M^3 / |det| across the triangle (M = |x, y|_max), which the plane's slope turns into an
     // error off the plane of the same size: large on slivers and grazing rays. Beyond 2^-19 of
-    // the problem's scale (t, |o|), i.e. on triangles much larger than their distance to the
-    // origin and on slivers, t comes from the plane equation in double instead.
+    // the problem's scale (needsExactT), i.e. on triangles much larger than their distance to
+    // the origin and on slivers, t comes from the plane equation in double instead.
     if (any(valid)) {
         const F zmax = max(max(abs(za), abs(zb)), abs(zc));
         const F xymax = max(max(max(abs(ax), abs(ay)), max(abs(bx), abs(by))), max(abs(cx), abs(cy)));
         const TScale sc(r);
         const F shape = xymax * xymax * xymax * abs(invDet);
         const F err = F(0x1p-22f) * ((xymax + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
-        const VMask<L> redo = valid & ~(err <= F(0x1p-19f) * (abs(t) + F(sc.oScale)));  // NaN: redo
-        if (any(redo)) t = exactPlaneT(redo, r, rows, n, i, t);
+        const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt);
+        if (any(redo)) t = exactPlaneT(redo, r, rows, n, i, t, skipPrim);
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
     return {t, V * invDet, W * invDet, valid};
 }
 
 template <int L>
-[[gnu::always_inline]] inline Step<L> testStep(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, float maxt) {
+[[gnu::always_inline]] inline Step<L> testStep(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, float maxt,
+                                               uint32_t skipPrim = ~0u) {
     const VMask<L> m = VMask<L>::firstN(n - i);
-    return kind == Intersector::MT ? mollerTrumbore<L>(r, rows, n, i, m, maxt) : watertight<L>(r, rows, n, i, m, maxt);
+    return kind == Intersector::MT ? mollerTrumbore<L>(r, rows, n, i, m, maxt, skipPrim)
+                                   : watertight<L>(r, rows, n, i, m, maxt, skipPrim);
 }
 
 /// Closest hit over chunk k (triangles 16k .. 16k + 15) in steps of L lanes: the lexicographic
@@ -366,7 +380,7 @@ bool chunkIntersect(Intersector kind, const TriangleRay &ray, const float *rows,
     bool found = false;
     const uint32_t end = std::min(n, 16 * k + 16);
     for (uint32_t i = 16 * k; i < end; i += L) {
-        Step<L> s = testStep<L>(kind, ray, rows, n, i, best.t);
+        Step<L> s = testStep<L>(kind, ray, rows, n, i, best.t, best.prim);
         if (!any(s.hit)) continue;
         const float tmin = reduceMin(s.hit, s.t);
         int winner = -1;
