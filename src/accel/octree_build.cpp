@@ -30,17 +30,28 @@ constexpr double kSahRefBudget = 1.5;
 /// the AVX-512 build (perf, cpu-clock, generated city) put one sixteen-lane triangle chunk at
 /// about three node visits; a sweep of kChunk from 0.5 to 8 moved nori-bench's ratios less
 /// than the machine's noise (bench/README.md).
+///
+/// A leaf of more than 16 triangles is not tested whole: its chunks are spatially compact
+/// (TriangleStore::setLeaf orders them by median splits) and each has a box, tested sixteen at
+/// a time, so a ray that enters the leaf meets one chunk and a small share of the others (on a
+/// surface, the chunk boxes' areas add up to about the surface's, not c times the leaf's).
+/// kOtherChunks is that share. Counting every chunk (1.0) made the `sah` tree twice as deep as
+/// it pays on meshes, with 6 triangles per leaf; 0.1 (nori-bench, dragon_res2, bunny, sphere,
+/// city, grass, stadium, one interleaved run each) halves the nodes, builds 10-30 % faster and
+/// keeps the ray ratios within the machine's noise (grass ends with 73 inner nodes).
 struct Cost {
-    static constexpr double kNode = 1.0;        ///< visiting an inner node
-    static constexpr double kChunk = 3.0;       ///< sixteen ray/triangle tests
-    static constexpr double kChunkBoxes = 1.0;  ///< sixteen chunk boxes of a leaf above 16 triangles
+    static constexpr double kNode = 1.0;          ///< visiting an inner node
+    static constexpr double kChunk = 3.0;         ///< sixteen ray/triangle tests
+    static constexpr double kChunkBoxes = 1.0;    ///< sixteen chunk boxes of a leaf above 16 triangles
+    static constexpr double kOtherChunks = 0.1;   ///< share of a leaf's other chunks a ray enters
 
     /// Testing a list of n triangles (a leaf or a kept list) once the ray reaches it.
     static double list(size_t n) {
         if (n == 0) return 0.0;
         size_t chunks = (n + 15) / 16;
         return chunks == 1 ? kChunk
-                           : kChunkBoxes * double((chunks + 15) / 16) + kChunk * double(chunks);
+                           : kChunkBoxes * double((chunks + 15) / 16) +
+                                 kChunk * (1.0 + kOtherChunks * double(chunks - 1));
     }
 };
 
@@ -148,8 +159,9 @@ struct Classifier {
 };
 
 
+struct Ref;
 std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
-                                std::vector<uint32_t> &refs, int depth, double budget);
+                                std::vector<Ref> &refs, int depth, double budget);
 
 /// Fill in the counters of \p node from its children (after they are built).
 void summarize(TempNode &node) {
@@ -191,9 +203,19 @@ __attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const
 /// went down loose (not copied; their bounds are no longer clipped to the cell).
 constexpr uint32_t kLooseBit = 0x80000000u;
 
-/// Strip the loose marks of a list that becomes a leaf or a kept list.
-void finish(std::vector<uint32_t> &list) {
-    for (uint32_t &r : list) r &= ~kLooseBit;
+/// A triangle reference during the build: its id (with kLooseBit) and its bounds, carried
+/// along so that classifying a node's triangles reads one array in order instead of the
+/// bounds of scattered ids (the build's cache misses).
+struct Ref {
+    BoundingBox3f b;  ///< the triangle's own bounds (not clipped)
+    uint32_t id;
+};
+
+/// The ids of a list that becomes a leaf, without loose marks.
+std::vector<uint32_t> finish(const std::vector<Ref> &list) {
+    std::vector<uint32_t> ids(list.size());
+    for (size_t i = 0; i < list.size(); ++i) ids[i] = list[i].id & ~kLooseBit;
+    return ids;
 }
 
 /// Split \p refs (the triangles touching \p cell, whose clipped bounds are \p box; a node at
@@ -208,7 +230,7 @@ void finish(std::vector<uint32_t> &list) {
 /// child's box grown to hold it whole: a loose octree, Ulrich 2000), which never adds a
 /// reference.
 std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, const BoundingBox3f &box,
-                                std::vector<uint32_t> &ids, int depthIn, double budget) {
+                                std::vector<Ref> &ids, int depthIn, double budget) {
     const size_t n = ids.size();
     const bool sah = in.rule == Rule::Sah;
     BoundingBox3f cell = cellIn;
@@ -222,8 +244,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     // touching a plane goes to both sides), refined by the SAT only for straddling triangles;
     // a loose triangle goes to the cell of its box's centre.
     auto classify = [&](size_t i) {
-        const uint32_t id = ids[i];
-        const BoundingBox3f &b = in.bounds[id & ~kLooseBit];
+        const uint32_t id = ids[i].id;
+        const BoundingBox3f &b = ids[i].b;
         unsigned mask = id & kLooseBit ? 1u << slotOf(cell, pattern, b.center()) : classifier->mask(b);
         if ((mask & (mask - 1)) && !(id & kLooseBit) && in.exact) mask = refine(in.vertices[id], b, cell, cells, mask);
         masks[i] = uint8_t(mask);
@@ -259,12 +281,12 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             boxes[c] = BoundingBox3f();
         }
         for (size_t i = 0; i < n; ++i) {
-            const BoundingBox3f &b = in.bounds[ids[i] & ~kLooseBit];
+            const BoundingBox3f &b = ids[i].b;
             for (unsigned m = masks[i]; m; m &= m - 1) {
                 int c = __builtin_ctz(m);
                 ++counts[c];
                 // A loose triangle's part that matters lies in this node's box (by induction).
-                const BoundingBox3f &r = ids[i] & kLooseBit ? box : cells[c];
+                const BoundingBox3f &r = ids[i].id & kLooseBit ? box : cells[c];
                 BoundingBox3f &o = boxes[c];
                 for (int a = 0; a < 3; ++a) {
                     float lo = b.min[a] > r.min[a] ? b.min[a] : r.min[a];
@@ -313,8 +335,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             if (!(m & (m - 1))) continue;
             double copies = 0.0;
             for (; m; m &= m - 1) copies += p[__builtin_ctz(m)];
-            const auto &v = in.vertices[ids[i] & ~kLooseBit];
-            double hit = boxArea > 0.0 ? std::min(1.0, double((v[1] - v[0]).cross(v[2] - v[0]).norm()) / boxArea) : 0.0;
+            // (A dense array: the corners of a random triangle cost three cache lines.)
+            double hit = boxArea > 0.0 ? std::min(1.0, double(in.areas[ids[i].id & ~kLooseBit]) / boxArea) : 0.0;
             if (copies * w + hit * descent > w) candidates.push_back({copies * w, hit, i});
         }
         std::sort(candidates.begin(), candidates.end(), [&](const Candidate &a, const Candidate &b) {
@@ -334,7 +356,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         if (best > 0) {
             kept.reserve(best);
             for (size_t k = 0; k < best; ++k) {
-                kept.push_back(ids[candidates[k].i] & ~kLooseBit);
+                kept.push_back(ids[candidates[k].i].id & ~kLooseBit);
                 masks[candidates[k].i] = 0;
             }
             gather();
@@ -351,7 +373,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         // Over budget: the straddling triangles go down loose.
         for (size_t i = 0; i < n; ++i)
             if (masks[i] & (masks[i] - 1)) {
-                ids[i] |= kLooseBit;
+                ids[i].id |= kLooseBit;
                 classify(i);
             }
         gather();
@@ -374,12 +396,13 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     auto node = std::make_unique<TempNode>();
     node->pattern = pattern;
     node->kept = std::move(kept);
+    std::vector<Ref> lists[8];
     for (int c = 0; c < 8; ++c) {
-        node->refs[c].reserve(counts[c]);
+        lists[c].reserve(counts[c]);
         node->box[c] = boxes[c];
     }
     for (size_t i = 0; i < n; ++i)
-        for (unsigned m = masks[i]; m; m &= m - 1) node->refs[__builtin_ctz(m)].push_back(ids[i]);
+        for (unsigned m = masks[i]; m; m &= m - 1) lists[__builtin_ctz(m)].push_back(ids[i]);
     masks = {};
 
     // Depth of each child: one level below, or for the seed's rule one more level for every
@@ -387,17 +410,14 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     for (int c = 0; c < 8; ++c) node->childDepth[c] = depth + 1 + (in.rule == Rule::Seed ? c : 0);
 
     auto buildChild = [&](int c) {
-        std::vector<uint32_t> &list = node->refs[c];
+        std::vector<Ref> &list = lists[c];
         if (list.size() >= in.leafSize && node->childDepth[c] < in.maxDepth) {
             double share = budget * double(list.size()) / double(sum);
             std::unique_ptr<TempNode> sub = split(in, cells[c], node->box[c], list, node->childDepth[c], share);
-            if (sub) {
-                node->inner[c] = std::move(sub);
-                std::vector<uint32_t>().swap(list);
-                return;
-            }
+            if (sub) node->inner[c] = std::move(sub);
         }
-        finish(list);
+        if (!node->inner[c]) node->refs[c] = finish(list);
+        std::vector<Ref>().swap(list);
     };
     if (n > kParallelRefs) {
         tbb::task_group group;
@@ -420,7 +440,8 @@ std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, 
                                     const std::vector<uint32_t> &refs) {
     if (refs.size() < in.leafSize || in.maxDepth <= 0) return nullptr;
     double perTriangle = in.rule == Rule::Sah ? kSahRefBudget : kRefBudget;
-    std::vector<uint32_t> ids(refs);
+    std::vector<Ref> ids(refs.size());
+    for (size_t i = 0; i < refs.size(); ++i) ids[i] = {in.bounds[refs[i]], refs[i]};
     return split(in, cell, box, ids, 0, perTriangle * double(refs.size()));
 }
 

@@ -15,6 +15,7 @@ namespace nori::octree_build {
 struct Input {
     const std::vector<std::array<Point3f, 3>> &vertices;  ///< corners of every global triangle
     const std::vector<BoundingBox3f> &bounds;              ///< bounding box of every global triangle
+    const std::vector<float> &areas;                       ///< twice the area of every global triangle
     OctreeAccel::BuildRule rule;
     int maxDepth;
     size_t leafSize;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include "accel/octree.h"
 #include "accel/octree_build.h"
+#include "accel/triangle_box.h"
 #include "robust_util.h"
 #include <scene_generator.h>
 #include <cmath>
@@ -43,7 +44,60 @@ void addTriangle(MeshData &m, const Point3f &c, float s) {
     m.faces.push_back({b, b + 1, b + 2});
 }
 
+/// Does the triangle (a, b, c) meet \p box? Reference by clipping the triangle against the
+/// box's six planes in double (Sutherland-Hodgman), independent of the separating-axis test.
+bool clipsToBox(const Point3f &a, const Point3f &b, const Point3f &c, const BoundingBox3f &box) {
+    using V = Eigen::Vector3d;
+    std::vector<V> poly{a.cast<double>(), b.cast<double>(), c.cast<double>()};
+    for (int axis = 0; axis < 3 && !poly.empty(); ++axis)
+        for (int side = 0; side < 2 && !poly.empty(); ++side) {
+            double plane = side ? box.max[axis] : box.min[axis];
+            auto inside = [&](const V &p) { return side ? p[axis] <= plane : p[axis] >= plane; };
+            std::vector<V> out;
+            for (size_t i = 0; i < poly.size(); ++i) {
+                const V &p = poly[i], &q = poly[(i + 1) % poly.size()];
+                if (inside(p)) out.push_back(p);
+                if (inside(p) != inside(q)) out.push_back(p + (q - p) * ((plane - p[axis]) / (q[axis] - p[axis])));
+            }
+            poly = std::move(out);
+        }
+    return !poly.empty();
+}
+
 } // namespace
+
+// The separating-axis test that decides which cells receive a triangle, against clipping:
+// it must never lose a triangle that reaches into a box (one shrunk by 1e-4 of its size), and
+// must reject one that misses the box grown by 1e-4 (else the cells fill with triangles they
+// do not hold). Random boxes, and triangles from small to long and thin around them.
+TEST(OctreeCells, SeparatingAxisTestAgreesWithClipping) {
+    pcg32 rng(11);
+    auto u = [&] { return float(rng() >> 8) * 0x1p-24f; };
+    int overlaps = 0, misses = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        Point3f lo(u() * 2 - 1, u() * 2 - 1, u() * 2 - 1);
+        Vector3f size(0.05f + u(), 0.05f + u(), 0.05f + u());
+        BoundingBox3f box(lo, lo + size);
+        Point3f centre = box.center();
+        float reach = trial % 2 ? 1.5f : 0.4f;
+        Point3f v[3];
+        for (Point3f &p : v) p = centre + reach * Vector3f(u() * 2 - 1, u() * 2 - 1, u() * 2 - 1);
+        if (trial % 3 == 0) v[2] = v[0] + 0.01f * (v[2] - v[0]) + (v[1] - v[0]) * u();  // a sliver
+        Vector3f m = 1e-4f * size;
+        BoundingBox3f inner(box.min + m, box.max - m), outer(box.min - m, box.max + m);
+        bool sat = triangleOverlapsBox(v[0], v[1], v[2], box);
+        if (clipsToBox(v[0], v[1], v[2], inner)) {
+            ++overlaps;
+            EXPECT_TRUE(sat) << "trial " << trial << ": a triangle reaching into the box was rejected";
+        } else if (!clipsToBox(v[0], v[1], v[2], outer)) {
+            ++misses;
+            EXPECT_FALSE(sat) << "trial " << trial << ": a triangle missing the box was accepted";
+        }
+    }
+    // Both kinds occur often enough for the test to mean something.
+    EXPECT_GT(overlaps, 2000);
+    EXPECT_GT(misses, 2000);
+}
 
 // The `sah` rule's children tile their cell, and no child is less cubic than its parent or
 // than 2:1: cells never become the thin slabs that every triangle crosses.
