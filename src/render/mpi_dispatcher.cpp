@@ -117,9 +117,10 @@ void MpiDispatcher::handle(const MPI_Status &status) {
         if (bytes != int(sizeof(int))) throw NoriException("malformed request from rank {}", source);
         std::memcpy(&wanted, m_buffer.data(), sizeof(int));
         std::vector<int> indices;
-        for (int index; !m_stopped.load() && int(indices.size()) < std::clamp(wanted, 1, 256) && takeIndex(index);)
+        for (int index; !m_stopped.load() && int(indices.size()) < std::clamp(wanted, 1, 4096) && takeIndex(index);)
             indices.push_back(index);
-        // Small enough to go eagerly: this returns without waiting for the worker.
+        // The worker posted its receive before asking: a few indices go eagerly, a long list
+        // (deep queues of many threads) waits at most for the worker's next poll.
         MPI_Send(indices.data(), int(indices.size()), MPI_INT, source, mpi::Assign, m_comm);
         break;
     }

@@ -8,7 +8,7 @@
 namespace nori {
 
 MpiWorker::MpiWorker(MPI_Comm comm, int threads, const std::atomic<bool> *cancel)
-    : m_comm(comm), m_threads(std::clamp(threads, 1, 256)), m_cancel(cancel) {}
+    : m_comm(comm), m_threads(std::clamp(threads, 1, 256)), m_depth(m_threads), m_cancel(cancel) {}
 
 MpiWorker::~MpiWorker() {
     if (m_thread.joinable()) {
@@ -22,12 +22,14 @@ MpiWorker::~MpiWorker() {
 }
 
 void MpiWorker::start(const BlockGenerator &, const ReconstructionFilter *, Merge) {
-    m_assigned.resize(size_t(m_threads));
+    m_assigned.resize(size_t(MaxDepthPerThread * m_threads));
     m_thread = std::thread([this] { communicate(); });
 }
 
 bool MpiWorker::claim(int &index) {
     std::unique_lock<std::mutex> lock(m_mutex);
+    // A thread that finds the queue empty waited for the network: keep more blocks queued.
+    if (m_queue.empty() && !m_noMore) m_depth = std::min(2 * m_depth, MaxDepthPerThread * m_threads);
     m_work.wait(lock, [&] { return !m_queue.empty() || m_noMore; });
     if (m_queue.empty()) return false;
     index = m_queue.front();
@@ -75,8 +77,8 @@ bool MpiWorker::poll() {
             m_interrupted = true;
             stopNow = true;
         }
-        if (!m_noMore && !stopNow && !m_asking && int(m_queue.size()) < m_threads) {
-            m_wanted = m_threads - int(m_queue.size());
+        if (!m_noMore && !stopNow && !m_asking && int(m_queue.size()) < m_depth) {
+            m_wanted = m_depth - int(m_queue.size());
             ask = true;
         }
     }
@@ -108,7 +110,7 @@ bool MpiWorker::poll() {
     }
     if (ask) {
         MPI_Isend(&m_wanted, 1, MPI_INT, 0, mpi::Request, m_comm, &m_askSend);
-        MPI_Irecv(m_assigned.data(), m_threads, MPI_INT, 0, mpi::Assign, m_comm, &m_askReceive);
+        MPI_Irecv(m_assigned.data(), int(m_assigned.size()), MPI_INT, 0, mpi::Assign, m_comm, &m_askReceive);
         m_asking = true;
         busy = true;
     }

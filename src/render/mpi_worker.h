@@ -15,9 +15,11 @@
 namespace nori {
 
 /// \brief The exchange of a rank other than 0. A communication thread keeps a queue of block
-/// indices from rank 0 about one block per render thread ahead (so a render thread never waits
-/// for the network, and few blocks are left queued here when the image runs out) and sends each
-/// finished block to rank 0. The render threads only touch the queue and the outbox.
+/// indices from rank 0, one block per render thread ahead (so a render thread does not wait for
+/// the network, and few blocks are left queued here when the image runs out), and sends each
+/// finished block to rank 0. When blocks take less time than a request's round trip (about a
+/// millisecond: both sides poll) and a thread finds the queue empty, the queue grows (doubling,
+/// up to MaxDepthPerThread blocks per thread). The render threads only touch queue and outbox.
 ///
 /// It ends after rank 0 answered "no more blocks", or after a Stop from rank 0 or a signal
 /// here (\p cancel): the blocks in flight are rendered and sent, then a goodbye, which tells
@@ -26,6 +28,8 @@ class MpiWorker final : public BlockExchange {
 public:
     /// \p threads: render threads of this process (the queue's depth); \p cancel: the signal flag.
     MpiWorker(MPI_Comm comm, int threads, const std::atomic<bool> *cancel);
+    /// \brief The deepest queue: blocks asked for ahead, per render thread.
+    static constexpr int MaxDepthPerThread = 16;
     ~MpiWorker() override;
 
     void start(const BlockGenerator &generator, const ReconstructionFilter *filter, Merge merge) override;
@@ -40,6 +44,7 @@ private:
 
     MPI_Comm m_comm;
     int m_threads;
+    int m_depth;                  ///< blocks to keep queued (guarded by m_mutex)
     const std::atomic<bool> *m_cancel;
 
     std::mutex m_mutex;           ///< guards the fields below
