@@ -19,9 +19,11 @@
 ///   - select(m, f, g), reduceMin(m, f) (+inf when m is empty), lane(f, j);
 ///   - masks: m & n, m | n, ~m (within the L lanes), any(m), bits(m) (bit j = lane j),
 ///     M::firstN(n) (lanes 0 .. n-1; all when n >= L);
-///   - U: U(x), U::loadu(p), u.storeu(p), lane(u, j); permute(f or u, idx) (lane j gets lane
-///     idx[j]); compressStore(m, f or u, dst): the lanes of m packed in lane order at dst,
-///     returns their count (dst must have room for L values: lanes past the count are scratch).
+///   - U: U(x), U::loadu(p), u.storeu(p), u ^ v, lane(u, j); permute(f or u, idx) (lane j gets
+///     lane idx[j]); lookup8(table, idx) (L = 1, 8: lane j gets table[idx[j]] from an 8-entry
+///     float or uint32 table, idx[j] < 8); compressStore(m, f or u, dst): the lanes of m packed
+///     in lane order at dst, returns their count (dst must have room for L values: lanes past
+///     the count are scratch).
 #pragma once
 
 #include <nori/common.h>
@@ -97,8 +99,12 @@ template <> struct VUint<1> {
     VUint(uint32_t x) : i(x) {}
     static VUint loadu(const uint32_t *p) { return *p; }
     void storeu(uint32_t *p) const { *p = i; }
+    friend VUint operator^(VUint a, VUint b) { return a.i ^ b.i; }
     friend uint32_t lane(VUint a, int) { return a.i; }
 };
+
+inline VFloat<1> lookup8(const float *table, VUint<1> idx) { return table[idx.i]; }
+inline VUint<1> lookup8(const uint32_t *table, VUint<1> idx) { return table[idx.i]; }
 
 inline VFloat<1> permute(VFloat<1> a, VUint<1>) { return a; }
 inline VUint<1> permute(VUint<1> a, VUint<1>) { return a; }
@@ -192,6 +198,7 @@ template <> struct VUint<8> {
     VUint(uint32_t x) : v(_mm256_set1_epi32(int(x))) {}
     static VUint loadu(const uint32_t *p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i *>(p)); }
     void storeu(uint32_t *p) const { _mm256_storeu_si256(reinterpret_cast<__m256i *>(p), v); }
+    friend VUint operator^(VUint a, VUint b) { return _mm256_xor_si256(a.v, b.v); }
     friend uint32_t lane(VUint a, int j) {
         alignas(32) uint32_t x[8];
         _mm256_store_si256(reinterpret_cast<__m256i *>(x), a.v);
@@ -201,6 +208,9 @@ template <> struct VUint<8> {
 
 inline VFloat<8> permute(VFloat<8> a, VUint<8> idx) { return _mm256_permutevar8x32_ps(a.v, idx.v); }
 inline VUint<8> permute(VUint<8> a, VUint<8> idx) { return _mm256_permutevar8x32_epi32(a.v, idx.v); }
+// An 8-entry table fits one register: a load and a lane permute instead of a gather.
+inline VFloat<8> lookup8(const float *table, VUint<8> idx) { return permute(VFloat<8>::loadu(table), idx); }
+inline VUint<8> lookup8(const uint32_t *table, VUint<8> idx) { return permute(VUint<8>::loadu(table), idx); }
 
 #if NORI_LANES_AVX512
 // Register compress plus a full store: compressing straight to memory is slow on some cores.
@@ -213,17 +223,28 @@ inline int compressStore(VMask<8> m, VUint<8> a, uint32_t *dst) {
     return __builtin_popcount(m.k);
 }
 #else
-// AVX2 has no compress: a short loop over the set lanes.
-template <typename T, typename V>
-inline int compressLoop(unsigned m, V a, T *dst) {
-    alignas(32) T x[8];
-    a.storeu(x);
-    int k = 0;
-    for (; m; m &= m - 1) dst[k++] = x[__builtin_ctz(m)];
-    return k;
+// AVX2 has no compress instruction: a lane permute whose indices come from a table (byte k of
+// entry m = the lane of the k-th set bit of m), branch-free unlike a loop over the set lanes.
+struct CompressTable8 {
+    uint64_t idx[256];
+    constexpr CompressTable8() : idx{} {
+        for (unsigned m = 0; m < 256; ++m)
+            for (unsigned j = 0, k = 0; j < 8; ++j)
+                if (m >> j & 1u) idx[m] |= uint64_t(j) << (8 * k++);
+    }
+};
+inline constexpr CompressTable8 kCompressTable8{};
+inline __m256i compressIndex(VMask<8> m) {
+    return _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kCompressTable8.idx[bits(m)])));
 }
-inline int compressStore(VMask<8> m, VFloat<8> a, float *dst) { return compressLoop(bits(m), a, dst); }
-inline int compressStore(VMask<8> m, VUint<8> a, uint32_t *dst) { return compressLoop(bits(m), a, dst); }
+inline int compressStore(VMask<8> m, VFloat<8> a, float *dst) {
+    _mm256_storeu_ps(dst, _mm256_permutevar8x32_ps(a.v, compressIndex(m)));
+    return __builtin_popcount(bits(m));
+}
+inline int compressStore(VMask<8> m, VUint<8> a, uint32_t *dst) {
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(dst), _mm256_permutevar8x32_epi32(a.v, compressIndex(m)));
+    return __builtin_popcount(bits(m));
+}
 #endif
 #endif  // NORI_LANES_AVX2
 
@@ -280,6 +301,7 @@ template <> struct VUint<16> {
     VUint(uint32_t x) : v(_mm512_set1_epi32(int(x))) {}
     static VUint loadu(const uint32_t *p) { return _mm512_loadu_si512(p); }
     void storeu(uint32_t *p) const { _mm512_storeu_si512(p, v); }
+    friend VUint operator^(VUint a, VUint b) { return _mm512_xor_si512(a.v, b.v); }
     friend uint32_t lane(VUint a, int j) {
         alignas(64) uint32_t x[16];
         _mm512_store_si512(x, a.v);

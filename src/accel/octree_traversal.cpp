@@ -1,16 +1,9 @@
 /// \file octree_traversal.cpp
 /// \brief Octree traversals: simd (default, exact), sorted (exact), seed (inexact, for comparison).
 #include "octree.h"
+#include "lanes.h"
 #include <algorithm>
 #include <cmath>
-
-#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
-#include <immintrin.h>
-#define NORI_OCTREE_AVX512 1
-#elif defined(__AVX2__)
-#include <immintrin.h>
-#define NORI_OCTREE_AVX2 1
-#endif
 
 namespace nori {
 #ifdef NORI_OCTREE_COUNTERS
@@ -93,127 +86,64 @@ struct StackEntry {
     float tnear;
 };
 
-#if NORI_OCTREE_AVX512
-/// Per-ray data of the 8-box AVX-512 test. Lane j < 8 gets the entry plane of child
-/// (7 - j) ^ octant, lane 8 + j its exit plane, so the lanes come out in the ray's back-to-front
-/// order (pushed onto the stack in that order, the nearest child ends up on top). Exit lanes
-/// are negated so that one max accumulates entry distances (lanes 0-7) and minus exit
-/// distances (lanes 8-15) at once.
-struct SimdRay {
-    __m512 org[3], scale[3];
-    __m512i flip[3];  ///< per axis: 8 in the lanes that read the box's upper half
+/// Lanes of the eight-child box test: one child per lane on AVX2 and AVX-512 (whose 16 lanes
+/// would hold only eight children), a loop over the children on one lane elsewhere.
+constexpr int kNodeLanes = lanes::kMaxLanes >= 8 ? 8 : 1;
+
+/// Lane j < 8 of the node kernel looks at child (7 - j) ^ octant: the ray's back-to-front order,
+/// so that pushed in lane order the nearest child ends up on top of the stack.
+alignas(32) constexpr uint32_t kBackToFront[8] = {7, 6, 5, 4, 3, 2, 1, 0};
+
+/// The eight-child box test, written once over lanes::VFloat<L>. Each lane performs the scalar
+/// SlabRay::hit operations in the same order, so every width gives the same children and entry
+/// distances bit for bit.
+template <int L>
+struct NodeRay {
+    using F = lanes::VFloat<L>;
+    using U = lanes::VUint<L>;
+    F org[3], rcpNear[3], rcpFar[3];
+    uint32_t entryHalf[3];  ///< 8 * neg[a]: where the entry planes start in node.box[a]
     unsigned signs;
 
-    explicit SimdRay(const SlabRay &s) : signs(s.signs) {
+    explicit NodeRay(const SlabRay &s) : signs(s.signs) {
         for (int a = 0; a < 3; ++a) {
-            org[a] = _mm512_set1_ps(s.o[a]);
-            scale[a] = _mm512_mask_blend_ps(0xFF00, _mm512_set1_ps(s.rcpNear[a]), _mm512_set1_ps(-s.rcpFar[a]));
-            flip[a] = _mm512_mask_blend_epi32(0xFF00, _mm512_set1_epi32(8 * s.neg[a]), _mm512_set1_epi32(8 - 8 * s.neg[a]));
+            org[a] = F(s.o[a]);
+            rcpNear[a] = F(s.rcpNear[a]);
+            rcpFar[a] = F(s.rcpFar[a]);
+            entryHalf[a] = 8u * uint32_t(s.neg[a]);
         }
     }
-    static __m512 interval(float mint, float maxt) {
-        return _mm512_mask_blend_ps(0xFF00, _mm512_set1_ps(mint), _mm512_set1_ps(-maxt));
-    }
+
     /// Push the children of \p node (reached through a reference with pattern \p code) that the
-    /// ray enters within the interval onto the stack (farthest first) with their entry
-    /// distances; returns how many. Register compress plus a full store: a compress straight
-    /// to memory is slow on some cores.
-    int push(const OctreeNode &node, uint32_t code, __m512 interval, uint32_t *child, uint32_t *count,
+    /// ray enters within [mint, maxt] onto the stack, farthest first, with their entry
+    /// distances; returns how many.
+    int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
              float *tnear) const {
-        const __m512i back = _mm512_set_epi32(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
-        __m512i order = _mm512_xor_si512(back, _mm512_set1_epi32(int(SlabRay::kOctants[code][signs])));
-        __m512 acc = interval;
-        for (int a = 0; a < 3; ++a) {
-            __m512 planes = _mm512_permutexvar_ps(_mm512_xor_si512(order, flip[a]), _mm512_load_ps(node.box[a]));
-            __m512 t = _mm512_mul_ps(_mm512_sub_ps(planes, org[a]), scale[a]);
-            acc = _mm512_max_ps(t, acc);  // vmaxps returns the second operand on NaN
-        }
-        __m256 entry = _mm512_castps512_ps256(acc);
-        __m256 exit = _mm256_xor_ps(_mm512_extractf32x8_ps(acc, 1), _mm256_set1_ps(-0.0f));
-        __mmask8 mask = _mm256_cmp_ps_mask(entry, exit, _CMP_LE_OQ);
-        __m256i childOrder = _mm512_castsi512_si256(order);
-        __m256i c = _mm256_permutexvar_epi32(childOrder, _mm256_load_si256(reinterpret_cast<const __m256i *>(node.child)));
-        __m256i n = _mm256_permutexvar_epi32(childOrder, _mm256_load_si256(reinterpret_cast<const __m256i *>(node.count)));
-        _mm256_storeu_si256(reinterpret_cast<__m256i *>(child), _mm256_maskz_compress_epi32(mask, c));
-        _mm256_storeu_si256(reinterpret_cast<__m256i *>(count), _mm256_maskz_compress_epi32(mask, n));
-        _mm256_storeu_ps(tnear, _mm256_maskz_compress_ps(mask, entry));
-        return __builtin_popcount(mask);
-    }
-};
-#elif NORI_OCTREE_AVX2
-/// The 8-box test with AVX2: one lane per child, permuted into the ray's back-to-front octant
-/// order; the surviving lanes are packed onto the stack by a short scalar loop (AVX2 has no
-/// compress instruction).
-struct SimdRay {
-    __m256 org[3], rcpNear[3], rcpFar[3];
-    int neg[3];
-    unsigned signs;
-
-    explicit SimdRay(const SlabRay &s) : signs(s.signs) {
-        for (int a = 0; a < 3; ++a) {
-            org[a] = _mm256_set1_ps(s.o[a]);
-            rcpNear[a] = _mm256_set1_ps(s.rcpNear[a]);
-            rcpFar[a] = _mm256_set1_ps(s.rcpFar[a]);
-            neg[a] = s.neg[a];
-        }
-    }
-    struct Interval {
-        __m256 mint, maxt;
-    };
-    static Interval interval(float mint, float maxt) { return {_mm256_set1_ps(mint), _mm256_set1_ps(maxt)}; }
-    int push(const OctreeNode &node, uint32_t code, Interval iv, uint32_t *child, uint32_t *count, float *tnear) const {
-        const unsigned octant = SlabRay::kOctants[code][signs];
-        const __m256i perm = _mm256_xor_si256(_mm256_setr_epi32(7, 6, 5, 4, 3, 2, 1, 0), _mm256_set1_epi32(int(octant)));
-        __m256 t0 = iv.mint, t1 = iv.maxt;
-        for (int a = 0; a < 3; ++a) {
-            const float *box = node.box[a];
-            __m256 nearPlane = _mm256_permutevar8x32_ps(_mm256_load_ps(box + 8 * neg[a]), perm);
-            __m256 farPlane = _mm256_permutevar8x32_ps(_mm256_load_ps(box + 8 * (1 - neg[a])), perm);
-            __m256 tn = _mm256_mul_ps(_mm256_sub_ps(nearPlane, org[a]), rcpNear[a]);
-            __m256 tf = _mm256_mul_ps(_mm256_sub_ps(farPlane, org[a]), rcpFar[a]);
-            t0 = _mm256_max_ps(tn, t0);  // second operand on NaN: a NaN never narrows the interval
-            t1 = _mm256_min_ps(tf, t1);
-        }
-        unsigned mask = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ)));
-        alignas(32) float entry[8];
-        _mm256_store_ps(entry, t0);
+        const U octant(uint32_t(SlabRay::kOctants[code][signs]));
         int k = 0;
-        for (; mask; mask &= mask - 1) {
-            int j = __builtin_ctz(mask);
-            int c = int(unsigned(7 - j) ^ octant);
-            child[k] = node.child[c];
-            count[k] = node.count[c];
-            tnear[k++] = entry[j];
-        }
-        return k;
-    }
-};
-#else
-/// Portable stand-in with the same lane order.
-struct SimdRay {
-    const SlabRay &slab;
-    explicit SimdRay(const SlabRay &s) : slab(s) {}
-    struct Interval { float mint, maxt; };
-    static Interval interval(float mint, float maxt) { return {mint, maxt}; }
-    int push(const OctreeNode &node, uint32_t code, Interval iv, uint32_t *child, uint32_t *count, float *tnear) const {
-        const unsigned octant = slab.octant(code);
-        int k = 0;
-        for (int j = 7; j >= 0; --j) {
-            int c = int(unsigned(j) ^ octant);
-            if (slab.hit(node, c, iv.mint, iv.maxt, tnear[k])) {
-                child[k] = node.child[c];
-                count[k++] = node.count[c];
+        for (int j = 0; j < 8; j += L) {
+            const U c = U::loadu(kBackToFront + j) ^ octant;
+            F t0(mint), t1(maxt);
+            for (int a = 0; a < 3; ++a) {
+                F tn = (lookup8(node.box[a] + entryHalf[a], c) - org[a]) * rcpNear[a];
+                F tf = (lookup8(node.box[a] + (8 - entryHalf[a]), c) - org[a]) * rcpFar[a];
+                t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
+                t1 = min(tf, t1);
             }
+            const lanes::VMask<L> hit = t0 <= t1;
+            compressStore(hit, lookup8(node.child, c), child + k);
+            compressStore(hit, lookup8(node.count, c), count + k);
+            k += compressStore(hit, t0, tnear + k);
         }
         return k;
     }
 };
-#endif
+using SimdRay = NodeRay<kNodeLanes>;
 
 } // namespace
 
 // ---------------------------------------------------------------------------------------------
-// simd: one 8-box test per node, children in the ray's octant order. For the midpoint split,
+// simd: one 8-box test per node (NodeRay), children in the ray's octant order. For the midpoint split,
 // child index XOR the direction's sign bits orders the cells front to back (Revelles et al.
 // 2000's observation); the order only affects speed, exactness comes from culling every
 // entry beyond the closest hit found so far and never stopping early.
@@ -224,7 +154,6 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     const TriangleRay tri(ray);
     Hit best;
     best.t = ray.maxt;
-    auto interval = SimdRay::interval(ray.mint, best.t);
 
     // Structure-of-arrays stack, with room for a full 8-lane store past the top.
     alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
@@ -241,13 +170,13 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             uint32_t kept = count & OctreeNode::kKeptMask;  // the node's own large triangles first
             NORI_OCTREE_COUNT(nodes, 1);
             NORI_OCTREE_COUNT(keptTris, kept);
-            if (kept && m_triangles.intersect(tri, m_keptOffset[child], kept, best))
-                interval = SimdRay::interval(ray.mint, best.t);
-            sp += simd.push(m_nodes[child], patternOf(count), interval, stackChild + sp, stackCount + sp, stackT + sp);
+            if (kept) m_triangles.intersect(tri, m_keptOffset[child], kept, best);
+            sp += simd.push(m_nodes[child], patternOf(count), ray.mint, best.t, stackChild + sp, stackCount + sp,
+                            stackT + sp);
         } else {
             NORI_OCTREE_COUNT(leaves, 1);
             NORI_OCTREE_COUNT(leafTris, count);
-            if (m_triangles.intersect(tri, child, count, best)) interval = SimdRay::interval(ray.mint, best.t);
+            m_triangles.intersect(tri, child, count, best);
         }
     }
     if (best.prim == ~0u) return false;
@@ -259,7 +188,6 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
     const SlabRay slab(ray);
     const SimdRay simd(slab);
     const TriangleRay tri(ray);
-    const auto interval = SimdRay::interval(ray.mint, ray.maxt);
 
     alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
     alignas(32) float stackT[kStackSize + 8];
@@ -274,7 +202,8 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
             NORI_OCTREE_COUNT(nodes, 1);
             NORI_OCTREE_COUNT(keptTris, kept);
             if (kept && m_triangles.occluded(tri, m_keptOffset[child], kept, ray.maxt)) return true;
-            sp += simd.push(m_nodes[child], patternOf(count), interval, stackChild + sp, stackCount + sp, stackT + sp);
+            sp += simd.push(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
+                            stackT + sp);
         } else {
             NORI_OCTREE_COUNT(leaves, 1);
             NORI_OCTREE_COUNT(leafTris, count);
