@@ -75,7 +75,7 @@ public:
     enum class Traversal {
         Seed,    ///< children by distance to their box, stop at the first subtree that hits (inexact)
         Sorted,  ///< exact: children sorted by entry t, skip those beyond the closest hit
-        Simd,    ///< exact: all eight boxes in one AVX-512 slab test, visited in the ray's octant order
+        Simd,    ///< exact: all eight boxes in one 8-lane slab test (NodeRay), visited in the ray's octant order
     };
     /// \brief How the tree is subdivided.
     enum class BuildRule {
