@@ -199,10 +199,6 @@ private:
         return fmt::format("{}:{}:{}", m_path, line, col);
     }
     std::string where(const pugi::xml_node &node) const { return where(node.offset_debug()); }
-    std::string whereLine(const pugi::xml_node &node) const {
-        std::string w = where(node);
-        return w.substr(0, w.rfind(':'));  // "file:line" for property locations
-    }
 
     [[noreturn]] void fail(const pugi::xml_node &node, const std::string &message) const {
         throw NoriException("{}: {}", where(node), message);
@@ -365,7 +361,7 @@ private:
 
     void parseProperty(const pugi::xml_node &node, Tag tag, PropertyList &props) {
         const std::string name = attr(node, "name");
-        const std::string loc = whereLine(node);
+        const std::string loc = where(node);  // "file:line:col", kept for value errors
         if (tag == Tag::Transform) {
             checkAttributes(node, {"name"}, {"name"});
             Transform transform;
@@ -402,7 +398,7 @@ private:
         std::string type = isScene ? "scene" : attr(node, "type");
 
         PropertyList props;
-        props.setLocation(whereLine(node));
+        props.setLocation(where(node));
         std::vector<std::unique_ptr<NoriObject>> children;
         Transform unusedTransform;
         bool hasAccel = false, hasSampler = false;

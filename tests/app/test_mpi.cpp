@@ -168,7 +168,7 @@ TEST(MpiFailure, ErrorOnAnotherRankIsPrintedOnceByRankZero) {
                                   {kDefaultScene, "-o", dir.file("out")});
     EXPECT_TRUE(r.exited && r.code != 0) << r.err;
     EXPECT_EQ(r.errLines(), 1) << r.err;
-    EXPECT_TRUE(std::regex_search(r.err, std::regex("^nori: .*default\\.xml:[0-9]+: .*knot\\.obj: cannot open.*"
+    EXPECT_TRUE(std::regex_search(r.err, std::regex("^nori: .*default\\.xml:[0-9]+:[0-9]+: .*knot\\.obj: cannot open.*"
                                                     " \\(on rank 1 of 2\\)\n$")))
         << r.err;
     EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
