@@ -54,13 +54,14 @@ static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
 ///
 /// Build (octree_build.cpp): every cell splits at its midpoint; triangles are classified
 /// against the midplanes by their bounding boxes, the separating-axis test only for those that
-/// straddle; children are built as parallel TBB tasks. The `sah` rule (default) splits only
-/// the axes of a cell that are long enough, so cells stay near-cubic (2, 4 or 8 children),
-/// keeps triangles that would be copied into many children in the node itself, and makes a
-/// leaf where a surface-area cost model says splitting no longer pays. `count` is the
-/// octree of issue 3 (eight children always, leaf below leafSize); `seed` is the seed
-/// report's rule (each later sibling counts one level deeper). Every rule stops at maxDepth
-/// and at a budget of 8 triangle references per triangle for any input. Memory: 256-byte inner
+/// straddle; children are built as parallel TBB tasks. The `sah` rule (default) makes the
+/// eight children by three bisections of the longest side (so cells stay near-cubic on flat
+/// or long scenes), keeps triangles that would be copied into many children in the node
+/// itself, and makes a leaf where a surface-area cost model says splitting no longer pays.
+/// `count` is the octree of issue 3 (x, y, z octants, leaf below leafSize); `seed` is the seed
+/// report's rule (each later sibling counts one level deeper). Every rule stops at maxDepth and
+/// at a budget of references per triangle for any input: 8 for `count` and `seed`, 1.5 for
+/// `sah` (past it, straddling triangles go down loose, uncopied). Memory: 256-byte inner
 /// nodes plus one word per node; leaves and kept lists live in the TriangleStore (40 bytes per
 /// reference plus 24 bytes per 16-triangle chunk).
 ///
