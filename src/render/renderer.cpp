@@ -138,7 +138,9 @@ RenderResult BlockRenderer::render(const RenderSettings &settings) const {
     result.closestHitRays = closestHitRays.load();
     result.shadowRays = shadowRays.load();
     result.rays = result.closestHitRays + result.shadowRays;
-    result.droppedSamples = dropped.load() + image.droppedSamples();
+    // Each merged block's count also went into the image (ImageBlock::put of a block adds it):
+    // count it once, from the tallies, which blocks from other ranks carry too.
+    result.droppedSamples = dropped.load();
     if (exchange) result.ranks = exchange->shares();
     result.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result;

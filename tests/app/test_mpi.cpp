@@ -103,8 +103,12 @@ void expectBytesOfOneProcess(const std::vector<std::string> &args) {
 
 } // namespace
 
+TEST(Mpi, DefaultSceneHasTheBytesOfOneProcess) {
+    expectBytesOfOneProcess({kDefaultScene, "-a", kMeshes, "--spp", "1"});
+}
+
 TEST(Mpi, AmbientOcclusionHasTheBytesOfOneProcess) {
-    expectBytesOfOneProcess({kDefaultScene, "-a", kMeshes, "--spp", "2"});
+    expectBytesOfOneProcess({kLongScene, "-a", kMeshes, "--spp", "1"});
 }
 
 // A path tracer (random walk lengths differ from block to block) and the Gaussian filter,

@@ -2,6 +2,7 @@
 /// \brief Tests of the block renderer: bit-identical images for any thread count, and the bunny against an Embree reference.
 #include <gtest/gtest.h>
 #include <embree_oracle.h>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nori/parser.h>
@@ -49,6 +50,15 @@ private:
     std::unique_ptr<EmbreeOracle> m_oracle;
 };
 NORI_REGISTER_CLASS(EmbreeNormalsIntegrator, "test_embree_normals", EIntegrator);
+
+/// Every sample is NaN: the renderer must leave each one out and count it once.
+class NanIntegrator : public Integrator {
+public:
+    explicit NanIntegrator(const PropertyList &) {}
+    Color3f Li(const Scene &, Sampler &, const Ray3f &) const override { return Color3f(std::nanf("")); }
+    std::string toString() const override { return "Nan[]"; }
+};
+NORI_REGISTER_CLASS(NanIntegrator, "test_nan", EIntegrator);
 
 RenderResult renderFile(const std::string &path, int threads, const SceneOverrides &overrides = {}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
@@ -122,4 +132,20 @@ TEST(Render, BunnyNormalsMatchEmbreeReference) {
     EXPECT_LE(differing, ours.image.pixels().size() / 10000);
     EXPECT_GT(background, 100000u);           // the bunny does not fill the frame
     EXPECT_LT(background, 768u * 768u - 100000u);  // and is there
+}
+
+TEST(Render, EveryNonFiniteSampleIsCountedOnce) {
+    TempDir dir;
+    dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::string path = dir.write("nan.xml", R"(<scene>
+  <integrator type="test_nan"/>
+  <sampler type="independent"><integer name="sampleCount" value="3"/></sampler>
+  <camera type="perspective"><integer name="width" value="40"/><integer name="height" value="24"/></camera>
+  <mesh type="obj"><string name="filename" value="tri.obj"/></mesh>
+</scene>)");
+    for (int threads : {1, 2}) {
+        RenderResult r = renderFile(path, threads);
+        ASSERT_TRUE(r.complete);
+        EXPECT_EQ(r.droppedSamples, 40u * 24u * 3u) << threads << " thread(s)";
+    }
 }
