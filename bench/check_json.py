@@ -7,31 +7,10 @@ Checks structure, types and internal arithmetic (Mrays/s = rays / ms / 1000, mis
 <= rays); never a timing. Exits 1 with one line per problem.
 """
 import json
-import math
 import sys
 
 SETS = ("primary", "diffuse", "shadow")
-problems = []
-
-
-def fail(where, message):
-    problems.append(f"{where}: {message}")
-
-
-def number(obj, key, where, minimum=None, integral=False):
-    if key not in obj:
-        fail(where, f"missing '{key}'")
-        return None
-    v = obj[key]
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or (integral and not isinstance(v, int)):
-        fail(where, f"'{key}' is {v!r}, expected {'an integer' if integral else 'a number'}")
-        return None
-    if not math.isfinite(v):
-        fail(where, f"'{key}' is not finite")
-        return None
-    if minimum is not None and v < minimum:
-        fail(where, f"'{key}' = {v} < {minimum}")
-    return v
+from json_checks import fail, number, problems
 
 
 def string(obj, key, where, choices=None):

@@ -12,26 +12,7 @@ import json
 import math
 import sys
 
-problems = []
-
-
-def fail(where, message):
-    problems.append(f"{where}: {message}")
-
-
-def number(obj, key, where, minimum=None, maximum=None, integral=False):
-    v = obj.get(key)
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or (integral and not isinstance(v, int)):
-        fail(where, f"'{key}' is {v!r}, expected {'an integer' if integral else 'a number'}")
-        return None
-    if not math.isfinite(v):
-        fail(where, f"'{key}' is not finite")
-        return None
-    if minimum is not None and v < minimum:
-        fail(where, f"'{key}' = {v} < {minimum}")
-    if maximum is not None and v > maximum:
-        fail(where, f"'{key}' = {v} > {maximum}")
-    return v
+from json_checks import fail, number, problems
 
 
 def check_run(doc, name, repeats):
