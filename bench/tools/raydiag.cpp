@@ -94,6 +94,33 @@ int main(int argc, char **argv) {
         return 0;
     }
     std::vector<Ray3f> primary = cameraRays(*camera, spp, 0x6e6f7269u);
+#ifdef NORI_OCTREE_COUNTERS
+    if (maxLines < 0) {
+        // Work per ray of the octree's default traversal (a measuring build: -DNORI_OCTREE_COUNTERS).
+        ClosestHitFunction octHit = [&](const Ray3f &r, Hit &h) { return octree.intersect(r, h); };
+        std::vector<Ray3f> diffuseSet = diffuseRays(primary, octHit, table, 0x62656e63u);
+        std::vector<Ray3f> shadowSet = lightShadowRays(primary, octHit, table, lightAbove(table.bbox()));
+        for (const AccelStat &s : octree.statistics()) std::printf("%s %g\n", s.name.c_str(), s.value);
+        auto report = [&](const char *name, const std::vector<Ray3f> &rays, bool shadow) {
+            g_octreeCounters = {};
+            size_t hits = 0;
+            for (const Ray3f &r : rays) {
+                Hit h;
+                hits += shadow ? octree.occluded(r) : octree.intersect(r, h);
+            }
+            double n = double(std::max<size_t>(rays.size(), 1));
+            std::printf("%-8s %8zu rays %5.1f%% hit | per ray: nodes %.2f, kept tris %.2f, leaves %.2f, leaf tris %.2f, chunks %.2f, exact t %.3f\n",
+                        name, rays.size(), 100.0 * double(hits) / n, double(g_octreeCounters.nodes) / n,
+                        double(g_octreeCounters.keptTris) / n, double(g_octreeCounters.leaves) / n,
+                        double(g_octreeCounters.leafTris) / n, double(g_octreeCounters.chunks) / n,
+                        double(g_octreeCounters.exactT) / n);
+        };
+        report("primary", primary, false);
+        report("diffuse", diffuseSet, false);
+        report("shadow", shadowSet, true);
+        return 0;
+    }
+#endif
     ClosestHitFunction hitFn = [&](const Ray3f &r, Hit &h) { return robust.intersect(r, h); };
     std::vector<Ray3f> diffuse = diffuseRays(primary, hitFn, table, 0x62656e63u);
     // The surface each diffuse ray leaves: the primary hits in order, as diffuseRays takes them.

@@ -164,6 +164,7 @@ private:
 /// measuring build only: -DNORI_OCTREE_COUNTERS; single-threaded use).
 struct OctreeCounters {
     uint64_t nodes = 0, keptTris = 0, leaves = 0, leafTris = 0;
+    uint64_t chunks = 0, exactT = 0;  ///< triangle chunks tested, t recomputed in double (lanes)
 };
 extern OctreeCounters g_octreeCounters;
 #endif

@@ -17,6 +17,13 @@
 #include <stdexcept>
 #include <type_traits>
 
+#ifdef NORI_OCTREE_COUNTERS
+#include "octree.h"
+#define NORI_TRIANGLE_COUNT(field, n) (g_octreeCounters.field += (n))
+#else
+#define NORI_TRIANGLE_COUNT(field, n) ((void)0)
+#endif
+
 namespace nori {
 
 using lanes::kMaxLanes;
@@ -184,6 +191,7 @@ template <int L>
                                                     uint32_t i, VFloat<L> t, uint32_t skipPrim) {
     float out[L];
     t.storeu(out);
+    NORI_TRIANGLE_COUNT(exactT, __builtin_popcount(bits(redo)));
     for (unsigned b = bits(redo); b; b &= b - 1) {
         const int j = __builtin_ctz(b);
         if (primAt(rows, n, i + uint32_t(j)) == skipPrim) {  // already the closest hit: no news
@@ -378,6 +386,7 @@ template <int L>
 template <int L>
 bool chunkIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k, Hit &best) {
     bool found = false;
+    NORI_TRIANGLE_COUNT(chunks, 1);
     const uint32_t end = std::min(n, 16 * k + 16);
     for (uint32_t i = 16 * k; i < end; i += L) {
         Step<L> s = testStep<L>(kind, ray, rows, n, i, best.t, best.prim);
@@ -453,6 +462,7 @@ bool leafOccluded(Intersector kind, const TriangleRay &ray, const float *rows, u
         unsigned mask = n <= 16 ? 1u : chunkEntries<L>(ray, rows, n, g, maxt, tn);
         for (; mask; mask &= mask - 1) {
             const uint32_t k = 16 * g + uint32_t(__builtin_ctz(mask));
+            NORI_TRIANGLE_COUNT(chunks, 1);
             for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L)
                 if (any(testStep<L>(kind, ray, rows, n, i, maxt).hit)) return true;
         }
