@@ -114,9 +114,19 @@ struct Classifier {
     float plane[3][7] = {};  ///< their positions, increasing
     uint8_t range[3][8][8] = {};
 
+    /// Closed cells (false: a box touching a plane goes to both sides, as the `count` and
+    /// `seed` rules do) or one side (true, `sah`): a box that only touches a plane from one
+    /// side, or lies in it, goes to one cell. That cell's closed extent holds the whole
+    /// triangle, and the traversal visits every child box a ray enters before its closest hit,
+    /// so the ray meets the triangle there; copying it into the other cell only doubles the
+    /// work. Faces on split planes (walls of stacked boxes, grid-aligned geometry) would
+    /// otherwise all be copied, or kept high in the tree as "large".
+    bool oneSide = false;
+
     /// \p cells: the children of \p cell by \p pattern. Along axis a the slabs are the
     /// bisections on a: none (one slab), one (two), or nested ones (up to eight).
-    Classifier(const BoundingBox3f &cell, const OctreeNode::Pattern &pattern, const BoundingBox3f cells[8]) {
+    Classifier(const BoundingBox3f &cell, const OctreeNode::Pattern &pattern, const BoundingBox3f cells[8], bool oneSideIn)
+        : oneSide(oneSideIn) {
         for (int a = 0; a < 3; ++a) {
             // Slab of each cell along a: its bits at the levels that bisect a.
             int bisections = 0, slabOf[8] = {};
@@ -143,7 +153,14 @@ struct Classifier {
         unsigned m = 0xFFu;
         for (int a = 0; a < 3; ++a) {
             int first = 0, last = 0;
-            if (planes[a] == 1) {  // the common case: one bisection of this axis
+            if (oneSide) {
+                // Slabs whose open interior the box reaches; a box in a plane takes the upper slab.
+                for (int k = 0; k < planes[a]; ++k) {
+                    first += plane[a][k] <= b.min[a];
+                    last += plane[a][k] < b.max[a];
+                }
+                last = last > first ? last : first;
+            } else if (planes[a] == 1) {  // the common case: one bisection of this axis
                 first = plane[a][0] < b.min[a];
                 last = plane[a][0] <= b.max[a];
             } else {
@@ -240,9 +257,9 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     std::vector<uint8_t> masks(n);
     std::optional<Classifier> classifier;
 
-    // Which child cells a triangle touches: its bounding box against the cells (closed: a box
-    // touching a plane goes to both sides), refined by the SAT only for straddling triangles;
-    // a loose triangle goes to the cell of its box's centre.
+    // Which child cells a triangle touches: its bounding box against the cells (see
+    // Classifier::oneSide for a box on a plane), refined by the SAT only for straddling
+    // triangles; a loose triangle goes to the cell of its box's centre.
     auto classify = [&](size_t i) {
         const uint32_t id = ids[i].id;
         const BoundingBox3f &b = ids[i].b;
@@ -253,7 +270,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     for (;;) {
         pattern = patternFor(in.rule, cell);
         for (int c = 0; c < 8; ++c) cells[c] = cellOf(cell, pattern, c);
-        classifier.emplace(cell, pattern, cells);
+        classifier.emplace(cell, pattern, cells, sah);
         if (n > 8 * kParallelRefs)
             tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t> &r) {
                 for (size_t i = r.begin(); i != r.end(); ++i) classify(i);
