@@ -7,6 +7,7 @@
 #include <tbb/task_group.h>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 
 namespace nori::octree_build {
@@ -288,34 +289,69 @@ std::vector<uint32_t> finish(const Ref *list, size_t n) {
     return ids;
 }
 
+/// Four floats in one vector register (a GCC/clang vector extension; SSE on x86-64), for the
+/// boxes of the gathering pass. Boxes as (x, y, z, unused).
+typedef float Float4 __attribute__((vector_size(16)));
+inline Float4 load4(const float *p) {
+    Float4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline Float4 load4(const Point3f &p) { return Float4{p.x(), p.y(), p.z(), 0.0f}; }
+// The same comparisons as the scalar code they replace, operand for operand, so that even the
+// sign of a zero bound comes out the same.
+inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
+inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
+
+/// The boxes a node's triangles are clipped to: its children's cells, and for loose triangles
+/// the node's box.
+struct Clips {
+    Float4 lo[9], hi[9];  ///< 0-7: the child cells; 8: the node's box
+    Clips(const BoundingBox3f &box, const BoundingBox3f cells[8]) {
+        for (int c = 0; c < 8; ++c) {
+            lo[c] = load4(cells[c].min);
+            hi[c] = load4(cells[c].max);
+        }
+        lo[8] = load4(box.min);
+        hi[8] = load4(box.max);
+    }
+};
+
 /// Children's reference counts and tight boxes (the union of their triangles' bounds, each
 /// clipped to the child's cell), summed over a run of references.
 struct Gathered {
     size_t counts[8] = {};
-    BoundingBox3f boxes[8];
+    Float4 lo[8], hi[8];
 
-    /// Reference \p r goes to the children in \p mask; \p box: the node's box, \p cells its
-    /// children's cells.
-    void add(const Ref &r, unsigned mask, const BoundingBox3f &box, const BoundingBox3f cells[8]) {
-        for (unsigned m = mask; m; m &= m - 1) {
-            int c = __builtin_ctz(m);
-            ++counts[c];
-            // A loose triangle's part that matters lies in this node's box (by induction).
-            const BoundingBox3f &clip = r.id & kLooseBit ? box : cells[c];
-            BoundingBox3f &o = boxes[c];
-            for (int a = 0; a < 3; ++a) {
-                float lo = r.lo[a] > clip.min[a] ? r.lo[a] : clip.min[a];
-                float hi = r.hi[a] < clip.max[a] ? r.hi[a] : clip.max[a];
-                o.min[a] = lo < o.min[a] ? lo : o.min[a];
-                o.max[a] = hi > o.max[a] ? hi : o.max[a];
-            }
+    Gathered() {
+        for (int c = 0; c < 8; ++c) {
+            lo[c] = Float4{} + Infinity;
+            hi[c] = Float4{} - Infinity;
         }
     }
+    /// Reference \p r goes to the children in \p mask.
+    void add(const Ref &r, unsigned mask, const Clips &clips) {
+        // (x, y, z, hi.x) and (x, y, z, id): the fourth lanes are never used.
+        const Float4 rlo = load4(r.lo), rhi = load4(r.hi);
+        // A loose triangle's part that matters lies in this node's box (by induction).
+        const bool loose = r.id & kLooseBit;
+        for (unsigned m = mask; m; m &= m - 1) {
+            int c = __builtin_ctz(m), k = loose ? 8 : c;
+            ++counts[c];
+            lo[c] = min4(max4(rlo, clips.lo[k]), lo[c]);
+            hi[c] = max4(min4(rhi, clips.hi[k]), hi[c]);
+        }
+    }
+    /// Add the sums of \p g, a later run (ties keep the earlier bound, as one pass would).
     void merge(const Gathered &g) {
         for (int c = 0; c < 8; ++c) {
             counts[c] += g.counts[c];
-            boxes[c].expandBy(g.boxes[c]);
+            lo[c] = g.lo[c] < lo[c] ? g.lo[c] : lo[c];
+            hi[c] = g.hi[c] > hi[c] ? g.hi[c] : hi[c];
         }
+    }
+    BoundingBox3f box(int c) const {
+        return BoundingBox3f(Point3f(lo[c][0], lo[c][1], lo[c][2]), Point3f(hi[c][0], hi[c][1], hi[c][2]));
     }
 };
 
@@ -364,12 +400,13 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     auto setGathered = [&](const Gathered &g) {
         for (int c = 0; c < 8; ++c) {
             counts[c] = g.counts[c];
-            boxes[c] = g.boxes[c];
+            boxes[c] = g.box(c);
         }
     };
     auto gather = [&] {
         Gathered g;
-        for (size_t i = 0; i < n; ++i) g.add(ids[i], masks[i], box, cells);
+        const Clips clips(box, cells);
+        for (size_t i = 0; i < n; ++i) g.add(ids[i], masks[i], clips);
         setGathered(g);
     };
     for (;;) {
@@ -379,8 +416,9 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         // Classification and gathering in one pass over the references (in blocks of 4096,
         // in parallel for large nodes; the blocks' sums are exact whatever their order).
         withMask(*classifier, [&](auto maskOf) {
+            const Clips clips(box, cells);
             auto run = [&](size_t begin, size_t end, Gathered &g) {
-                for (size_t i = begin; i < end; ++i) g.add(ids[i], classifyOne(i, maskOf), box, cells);
+                for (size_t i = begin; i < end; ++i) g.add(ids[i], classifyOne(i, maskOf), clips);
             };
             Gathered all;
             if (n > 8 * kParallelRefs) {
