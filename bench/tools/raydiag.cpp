@@ -114,6 +114,11 @@ int main(int argc, char **argv) {
                         double(g_octreeCounters.keptTris) / n, double(g_octreeCounters.leaves) / n,
                         double(g_octreeCounters.leafTris) / n, double(g_octreeCounters.chunks) / n,
                         double(g_octreeCounters.exactT) / n);
+            std::printf("         kept lists %.2f, their chunks %.2f | leaves/chunks by leaf size (<=16, 32, 64, 128, 256, more):",
+                        double(g_octreeCounters.keptLists) / n, double(g_octreeCounters.keptChunks) / n);
+            for (int b = 0; b < 6; ++b)
+                std::printf(" %.2f/%.2f", double(g_octreeCounters.leavesBySize[b]) / n, double(g_octreeCounters.chunksBySize[b]) / n);
+            std::printf("\n");
         };
         report("primary", primary, false);
         report("diffuse", diffuseSet, false);
