@@ -16,6 +16,7 @@ Accuracy Accuracy::compare(const std::vector<float> &answers, const std::vector<
         float t = answers[i], ref = reference[i];
         bool hit = std::isfinite(t), refHit = std::isfinite(ref);
         if (hit != refHit) {
+            a.mismatchRays.push_back(uint32_t(i));
             ++a.mismatches;
             ++a.hitMiss;
             continue;
@@ -27,7 +28,10 @@ Accuracy Accuracy::compare(const std::vector<float> &answers, const std::vector<
         Eigen::Vector3d o = ray.o.cast<double>(), d = ray.d.cast<double>();
         double scale = std::max(o.cwiseAbs().maxCoeff(), (o + double(ref) * d).cwiseAbs().maxCoeff());
         double apart = std::abs(double(t) - double(ref)) * d.norm();
-        if (apart > std::max(Tolerance * std::abs(double(ref)) * d.norm(), ScaleTolerance * scale)) ++a.mismatches;
+        if (apart > std::max(Tolerance * std::abs(double(ref)) * d.norm(), ScaleTolerance * scale)) {
+            a.mismatchRays.push_back(uint32_t(i));
+            ++a.mismatches;
+        }
     }
     return a;
 }

@@ -25,6 +25,20 @@ struct Accuracy {
     uint64_t hitMiss = 0;       ///< of which: hit/miss differs
     double maxRelTError = 0.0;  ///< largest |t - t_ref| / t_ref over rays both report as hits
 
+    /// Exact referee (BenchRunner; OracleJudge::referee) of the disputed rays: those where the
+    /// contender or Embree default (the speed peer, timed beside it) differs from the reference.
+    /// On each, the closest hits of the three are decided in double on the triangles they name;
+    /// an answer is wrong when it is not the exact one (undecidable: the ray within ~1e-9 of the
+    /// scale of an edge or a segment end, counted as right). So the contender's and Embree
+    /// default's errors are counted on the same rays, and so are the reference's own.
+    bool refereed = false;
+    uint64_t disputed = 0;        ///< rays refereed
+    uint64_t exactWrong = 0;      ///< of which the contender's answer is not the exact one
+    uint64_t peerWrong = 0;       ///< of which Embree default's answer is not
+    uint64_t referenceWrong = 0;  ///< of which Embree robust's answer is not
+
+    std::vector<uint32_t> mismatchRays;  ///< indices of the mismatching rays (not reported)
+
     /// \brief Compare \p answers with \p reference (same encoding as RaySet::reference) for
     /// \p rays (the ray set both were traced on).
     static Accuracy compare(const std::vector<float> &answers, const std::vector<float> &reference,

@@ -2,6 +2,7 @@
 /// \brief Runs every contender on one input, interleaved with Embree, and collects the results (implementation).
 #include "bench_runner.h"
 #include "embree_oracle.h"
+#include "oracle_judge.h"
 #include "ray_sets.h"
 #include "ray_workload.h"
 #include <nori/object.h>
@@ -58,6 +59,7 @@ std::array<SetTiming, 3> BenchRunner::interleaved(const Tracer &tracer, const Em
         t.ratioVsEmbree = t.ms > 0.0 ? t.embreeMs / t.ms : 0.0;
         t.hasAccuracy = true;
         t.accuracy = Accuracy::compare(answers, set.reference, set.rays);
+        referee(tracer, embree, set, embreeAnswers, t.accuracy);
         if (embreeSamples) {
             auto &dst = (*embreeSamples)[size_t(s)];
             dst.insert(dst.end(), embreeRuns.begin(), embreeRuns.end());
@@ -66,11 +68,36 @@ std::array<SetTiming, 3> BenchRunner::interleaved(const Tracer &tracer, const Em
     return out;
 }
 
+template <typename Tracer>
+void BenchRunner::referee(const Tracer &tracer, const EmbreeOracle &peer, const RaySet &set,
+                          const std::vector<float> &peerAnswers, Accuracy &accuracy) const {
+    if (!m_judge || !m_robust) return;
+    std::vector<uint32_t> rays = accuracy.mismatchRays;
+    const Accuracy peerAccuracy = Accuracy::compare(peerAnswers, set.reference, set.rays);
+    rays.insert(rays.end(), peerAccuracy.mismatchRays.begin(), peerAccuracy.mismatchRays.end());
+    std::sort(rays.begin(), rays.end());
+    rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
+    accuracy.refereed = true;
+    accuracy.disputed = rays.size();
+    for (uint32_t i : rays) {
+        // Closest hits behind the answers (for shadow rays too: what occluded them).
+        const Ray3f &ray = set.rays[i];
+        Hit hits[3];
+        bool hit[3] = {tracer.intersect(ray, hits[0]), peer.intersect(ray, hits[1]), m_robust->intersect(ray, hits[2])};
+        std::vector<uint32_t> candidates;
+        for (int k = 0; k < 3; ++k)
+            if (hit[k]) candidates.push_back(hits[k].prim);
+        accuracy.exactWrong += m_judge->referee(ray, hit[0], hits[0], candidates) < 0;
+        accuracy.peerWrong += m_judge->referee(ray, hit[1], hits[1], candidates) < 0;
+        accuracy.referenceWrong += m_judge->referee(ray, hit[2], hits[2], candidates) < 0;
+    }
+}
+
 void BenchRunner::progress(const std::string &what, const RunResult &run) const {
     std::string line = fmt::format("[nori-bench]   {:<34} build {:>9.1f} ms", what, run.buildMs);
     for (const SetTiming &s : run.sets)
-        line += fmt::format(" | {} {:.3f} Mr/s {:.2f}x {} mism", s.name, s.mraysPerS, s.ratioVsEmbree,
-                            s.accuracy.mismatches);
+        line += fmt::format(" | {} {:.3f} Mr/s {:.2f}x {} mism ({} wrong)", s.name, s.mraysPerS, s.ratioVsEmbree,
+                            s.accuracy.mismatches, s.accuracy.exactWrong);
     std::fprintf(stderr, "%s\n", line.c_str());
 }
 
@@ -101,6 +128,7 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
     result.notes = m_catalog.skipped();
     std::vector<const Mesh *> meshes = input.meshPointers();
     MeshTable table(meshes);
+    OracleJudge judge(meshes);
 
     std::fprintf(stderr, "[nori-bench] %s: %llu triangles, loaded in %.1f ms, %d thread(s)\n", input.name.c_str(),
                  (unsigned long long)result.triangles, input.loadMs, m_threads);
@@ -122,6 +150,8 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
     result.embree.bytes = fast->bytes();
     result.embreeRobust.buildMs = median(robustBuilds);
     result.embreeRobust.bytes = robust->bytes();
+    m_judge = &judge;
+    m_robust = robust.get();
     std::fprintf(stderr, "[nori-bench]   embree build %.1f ms (%lld bytes), robust %.1f ms (%lld bytes)\n",
                  result.embree.buildMs, result.embree.bytes, result.embreeRobust.buildMs, result.embreeRobust.bytes);
 
@@ -195,7 +225,10 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
         m_timer.trace(*fast, work.set(s), answers);
         t.hasAccuracy = true;
         t.accuracy = Accuracy::compare(answers, work.set(s).reference, work.set(s).rays);
+        referee(*fast, *fast, work.set(s), answers, t.accuracy);
     }
+    m_judge = nullptr;
+    m_robust = nullptr;
     const auto &e = result.embree.sets;
     std::fprintf(stderr, "[nori-bench]   embree: primary %.3f, diffuse %.3f, shadow %.3f Mrays/s\n",
                  e[0].mraysPerS, e[1].mraysPerS, e[2].mraysPerS);

@@ -10,11 +10,14 @@
 
 namespace nori {
 class EmbreeOracle;
+class OracleJudge;
 }
 
 namespace nori::bench {
 
 class RayWorkload;
+struct RaySet;
+struct Accuracy;
 
 class BenchRunner {
 public:
@@ -33,6 +36,17 @@ private:
                        const BenchInput &input, const EmbreeOracle &embree, const RayWorkload &work,
                        std::array<std::vector<double>, 3> *embreeSamples) const;
     void progress(const std::string &what, const RunResult &run) const;
+    /// \brief Decide each mismatch of \p accuracy (on \p set, answered by \p tracer) in exact
+    /// arithmetic against the reference (m_robust), untimed.
+    /// \p peer (Embree default, whose \p peerAnswers were traced beside the contender's) is
+    /// refereed on the same rays.
+    template <typename Tracer>
+    void referee(const Tracer &tracer, const EmbreeOracle &peer, const RaySet &set, const std::vector<float> &peerAnswers,
+                 Accuracy &accuracy) const;
+
+    // The referee's context, set by run() for the input being measured.
+    mutable const OracleJudge *m_judge = nullptr;
+    mutable const EmbreeOracle *m_robust = nullptr;
 
     const BenchOptions &m_options;
     const OctreeCatalog &m_catalog;

@@ -42,6 +42,14 @@ def check_set(obj, name, where, contender):
             fail(w, f"mismatches {mism} > rays {rays}")
         if ratio is not None and ratio <= 0:
             fail(w, "ratio_vs_embree must be positive")
+        if "disputed" in s:
+            disputed = number(s, "disputed", w, 0, integral=True)
+            for key in ("exact_wrong", "embree_exact_wrong", "reference_exact_wrong"):
+                wrong = number(s, key, w, 0, integral=True)
+                if wrong is not None and disputed is not None and wrong > disputed:
+                    fail(w, f"{key} {wrong} > disputed {disputed}")
+            if mism is not None and disputed is not None and disputed < mism:
+                fail(w, f"disputed {disputed} < mismatches {mism}: every mismatch is refereed")
 
 
 def check_mesh(m, where):

@@ -27,6 +27,12 @@ Json setJson(const SetTiming &s, bool withRatio) {
         j["mismatches"] = s.accuracy.mismatches;
         j["hit_miss_mismatches"] = s.accuracy.hitMiss;
         j["max_rel_t_error"] = number(s.accuracy.maxRelTError);
+        if (s.accuracy.refereed) {
+            j["disputed"] = s.accuracy.disputed;
+            j["exact_wrong"] = s.accuracy.exactWrong;
+            j["embree_exact_wrong"] = s.accuracy.peerWrong;
+            j["reference_exact_wrong"] = s.accuracy.referenceWrong;
+        }
     }
     j["samples_ms"] = Json::array();
     for (double v : s.samples) j["samples_ms"].push_back(number(v));

@@ -30,7 +30,7 @@ double planeDistance(const Mesh &m, uint32_t f, const Point3f &p) {
 
 int main(int argc, char **argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: nori-raydiag SCENE.xml|shape:NAME [spp] [max lines]\n");
+        std::fprintf(stderr, "usage: nori-raydiag SCENE.xml|shape:NAME [spp] [max lines (-1: work per ray, counters build)] [primary]\n");
         return 2;
     }
     std::string input = argv[1];
@@ -114,6 +114,11 @@ int main(int argc, char **argv) {
                         double(g_octreeCounters.keptTris) / n, double(g_octreeCounters.leaves) / n,
                         double(g_octreeCounters.leafTris) / n, double(g_octreeCounters.chunks) / n,
                         double(g_octreeCounters.exactT) / n);
+            std::printf("         kept lists %.2f, their chunks %.2f | leaves/chunks by leaf size (<=16, 32, 64, 128, 256, more):",
+                        double(g_octreeCounters.keptLists) / n, double(g_octreeCounters.keptChunks) / n);
+            for (int b = 0; b < 6; ++b)
+                std::printf(" %.2f/%.2f", double(g_octreeCounters.leavesBySize[b]) / n, double(g_octreeCounters.chunksBySize[b]) / n);
+            std::printf("\n");
         };
         report("primary", primary, false);
         report("diffuse", diffuseSet, false);
@@ -122,7 +127,9 @@ int main(int argc, char **argv) {
     }
 #endif
     ClosestHitFunction hitFn = [&](const Ray3f &r, Hit &h) { return robust.intersect(r, h); };
-    std::vector<Ray3f> diffuse = diffuseRays(primary, hitFn, table, 0x62656e63u);
+    // argv[4] == "primary": the camera rays themselves (the bench's primary set) instead.
+    const bool primaryMode = argc > 4 && std::string(argv[4]) == "primary";
+    std::vector<Ray3f> diffuse = primaryMode ? primary : diffuseRays(primary, hitFn, table, 0x62656e63u);
     // The surface each diffuse ray leaves: the primary hits in order, as diffuseRays takes them.
     std::vector<Hit> sources;
     for (const Ray3f &r : primary) {
@@ -135,6 +142,7 @@ int main(int argc, char **argv) {
         if (n.isZero()) continue;
         sources.push_back(h);
     }
+    if (primaryMode) sources.assign(diffuse.size(), Hit{});
     if (sources.size() != diffuse.size()) {
         std::fprintf(stderr, "internal: %zu sources for %zu rays\n", sources.size(), diffuse.size());
         return 1;
@@ -142,6 +150,9 @@ int main(int argc, char **argv) {
     OracleJudge judge(meshes);
     std::array<size_t, VerdictCount> verdicts{};
     size_t mism = 0, fastMism = 0;
+    // Exact referee over every ray where any two of the three answers differ: right / wrong /
+    // undecidable counts for octree, robust, fast.
+    size_t disputed = 0, right[3] = {}, wrong[3] = {};
     for (size_t i = 0; i < diffuse.size(); ++i) {
         const Ray3f &ray = diffuse[i];
         Hit ho, hr, hf;
@@ -152,12 +163,25 @@ int main(int argc, char **argv) {
             return std::abs(double(ha.t) - double(hr.t)) / std::max(std::abs(double(hr.t)), 1e-30) > 1e-4;
         };
         fastMism += differs(f, hf);
+        if (differs(o, ho) || differs(f, hf)) {
+            ++disputed;
+            std::vector<uint32_t> cand;
+            for (auto [a, h] : {std::pair<bool, const Hit *>{o, &ho}, {r, &hr}, {f, &hf}})
+                if (a) cand.push_back(h->prim);
+            int k = 0;
+            for (auto [a, h] : {std::pair<bool, const Hit *>{o, &ho}, {r, &hr}, {f, &hf}}) {
+                int v = judge.referee(ray, a, *h, cand);
+                right[k] += v > 0;
+                wrong[k] += v < 0;
+                ++k;
+            }
+        }
         if (!differs(o, ho)) continue;
         ++mism;
         Verdict v = judge.judge(ray, o, ho, r, hr);
         ++verdicts[v];
         if (int(mism) > maxLines) continue;
-        auto [sm, sf] = octree.locate(sources[i].prim);
+        auto [sm, sf] = octree.locate(primaryMode ? (r ? hr.prim : ho.prim) : sources[i].prim);
         double scale = std::max(double(ray.o.cwiseAbs().maxCoeff()), double((r ? hr.t : ho.t) * ray.d.norm()));
         double ulp = std::ldexp(1.0, std::ilogb(scale) - 23);  // one float ulp at the scale
         std::string exact;
@@ -173,9 +197,12 @@ int main(int argc, char **argv) {
                     o ? "hit" : "miss", ho.t, ho.prim, r ? "hit" : "miss", hr.t, hr.prim, f ? "hit" : "miss", hf.t,
                     hf.prim, exact.c_str());
     }
-    std::printf("%zu diffuse rays: octree %zu mismatches, embree default %zu; octree's by verdict:", diffuse.size(), mism,
+    std::printf("%zu %s rays: octree %zu mismatches, embree default %zu; octree's by verdict:", diffuse.size(), primaryMode ? "primary" : "diffuse", mism,
                 fastMism);
     for (int v = 0; v < VerdictCount; ++v) std::printf(" %s %zu", verdictName(v), verdicts[size_t(v)]);
     std::printf("\n");
+    std::printf("exact referee on the %zu rays where an answer differs from robust's: right/wrong (rest undecidable): "
+                "octree %zu/%zu, embree robust %zu/%zu, embree default %zu/%zu\n",
+                disputed, right[0], wrong[0], right[1], wrong[1], right[2], wrong[2]);
     return 0;
 }

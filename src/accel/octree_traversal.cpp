@@ -14,6 +14,36 @@ OctreeCounters g_octreeCounters;
 #endif
 
 namespace {
+/// Runs \p test, a test of a kept list (\p kept) or of a leaf of \p n triangles, and in a
+/// measuring build counts it with the chunks it tested (leaves by size class).
+template <typename Test>
+inline bool countedList(bool kept, uint32_t n, Test test) {
+#ifdef NORI_OCTREE_COUNTERS
+    OctreeCounters &c = g_octreeCounters;
+    const uint64_t before = c.chunks;
+    const bool result = test();
+    const uint64_t chunks = c.chunks - before;
+    if (kept) {
+        c.keptLists += 1;
+        c.keptTris += n;
+        c.keptChunks += chunks;
+    } else {
+        const int size = n <= 16 ? 0 : n <= 32 ? 1 : n <= 64 ? 2 : n <= 128 ? 3 : n <= 256 ? 4 : 5;
+        c.leaves += 1;
+        c.leafTris += n;
+        c.leavesBySize[size] += 1;
+        c.chunksBySize[size] += chunks;
+    }
+    return result;
+#else
+    (void)kept;
+    (void)n;
+    return test();
+#endif
+}
+} // namespace
+
+namespace {
 
 /// Child slab distances are widened by this relative amount (entry rounded down, exit up),
 /// which covers the rounding of (plane - origin) * (1 / d) (Ize 2013, "Robust BVH Ray
@@ -114,15 +144,20 @@ struct NodeRay {
         }
     }
 
-    /// Push the children of \p node (reached through a reference with pattern \p code) that the
-    /// ray enters within [mint, maxt] onto the stack, farthest first, with their entry
-    /// distances; returns how many.
+    /// The children of \p node (reached through a reference with pattern \p code) that the ray
+    /// enters within [mint, maxt]: the nearest in the ray's octant order goes to \p near (child
+    /// and count, as in OctreeNode), the others onto the stack, farthest first, with their entry
+    /// distances. Returns how many were pushed, or -1 when the ray enters no child. Handing the
+    /// nearest child over in registers spares the traversal a store and an immediate reload of
+    /// the stack top (a store-forwarding stall on the hot path), and its cull test: it was
+    /// entered before the closest hit, which cannot have changed since.
     int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
-             float *tnear) const {
-        const U octant(uint32_t(SlabRay::kOctants[code][signs]));
+             float *tnear, uint32_t near[2]) const {
+        const uint32_t octant = SlabRay::kOctants[code][signs];
+        const U octantLanes(octant);
         int k = 0;
         for (int j = 0; j < 8; j += L) {
-            const U c = U::loadu(kBackToFront + j) ^ octant;
+            const U c = U::loadu(kBackToFront + j) ^ octantLanes;
             F t0(mint), t1(maxt);
             for (int a = 0; a < 3; ++a) {
                 F tn = (lookup8(node.box[a] + entryHalf[a], c) - org[a]) * rcpNear[a];
@@ -130,10 +165,27 @@ struct NodeRay {
                 t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
                 t1 = min(tf, t1);
             }
-            const lanes::VMask<L> hit = t0 <= t1;
+            lanes::VMask<L> hit = t0 <= t1;
+            if constexpr (L == 8) {
+                // One block: the nearest child is the highest set lane; the others are pushed.
+                const unsigned m = bits(hit);
+                if (m == 0) return -1;
+                const int top = 31 - __builtin_clz(m);
+                const uint32_t nearest = (7u - uint32_t(top)) ^ octant;
+                near[0] = node.child[nearest];
+                near[1] = node.count[nearest];
+                hit = hit & lanes::VMask<L>::firstN(uint32_t(top));
+            }
             compressStore(hit, lookup8(node.child, c), child + k);
             compressStore(hit, lookup8(node.count, c), count + k);
             k += compressStore(hit, t0, tnear + k);
+        }
+        if constexpr (L != 8) {
+            // Lane by lane: the last one pushed is the nearest.
+            if (k == 0) return -1;
+            --k;
+            near[0] = child[k];
+            near[1] = count[k];
         }
         return k;
     }
@@ -158,26 +210,31 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     // Structure-of-arrays stack, with room for a full 8-lane store past the top.
     alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
     alignas(32) float stackT[kStackSize + 8];
-    stackChild[0] = 0;
-    stackCount[0] = m_rootCount;
-    stackT[0] = ray.mint;
-    int sp = 1;
-    while (sp > 0) {
-        --sp;
-        if (stackT[sp] > best.t) continue;  // entered only beyond the closest hit so far
-        uint32_t child = stackChild[sp], count = stackCount[sp];
+    uint32_t child = 0, count = m_rootCount;
+    int sp = 0;
+    for (;;) {
         if (count & OctreeNode::kInner) {
-            uint32_t kept = count & OctreeNode::kKeptMask;  // the node's own large triangles first
+            const uint32_t kept = count & OctreeNode::kKeptMask;  // the node's own large triangles first
             NORI_OCTREE_COUNT(nodes, 1);
-            NORI_OCTREE_COUNT(keptTris, kept);
-            if (kept) m_triangles.intersect(tri, m_keptOffset[child], kept, best);
-            sp += simd.push(m_nodes[child], patternOf(count), ray.mint, best.t, stackChild + sp, stackCount + sp,
-                            stackT + sp);
+            if (kept) countedList(true, kept, [&] { return m_triangles.intersect(tri, m_keptOffset[child], kept, best); });
+            uint32_t near[2];
+            int pushed = simd.push(m_nodes[child], patternOf(count), ray.mint, best.t, stackChild + sp, stackCount + sp,
+                                   stackT + sp, near);
+            if (pushed >= 0) {  // descend into the nearest child at once
+                sp += pushed;
+                child = near[0];
+                count = near[1];
+                continue;
+            }
         } else {
-            NORI_OCTREE_COUNT(leaves, 1);
-            NORI_OCTREE_COUNT(leafTris, count);
-            m_triangles.intersect(tri, child, count, best);
+            countedList(false, count, [&] { return m_triangles.intersect(tri, child, count, best); });
         }
+        // Next: the top of the stack, skipping entries beyond the closest hit so far.
+        while (sp > 0 && stackT[sp - 1] > best.t) --sp;
+        if (sp == 0) break;
+        --sp;
+        child = stackChild[sp];
+        count = stackCount[sp];
     }
     if (best.prim == ~0u) return false;
     hit = best;
@@ -191,24 +248,30 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
 
     alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
     alignas(32) float stackT[kStackSize + 8];
-    stackChild[0] = 0;
-    stackCount[0] = m_rootCount;
-    int sp = 1;
-    while (sp > 0) {
-        --sp;
-        uint32_t child = stackChild[sp], count = stackCount[sp];
+    uint32_t child = 0, count = m_rootCount;
+    int sp = 0;
+    for (;;) {
         if (count & OctreeNode::kInner) {
-            uint32_t kept = count & OctreeNode::kKeptMask;
+            const uint32_t kept = count & OctreeNode::kKeptMask;
             NORI_OCTREE_COUNT(nodes, 1);
-            NORI_OCTREE_COUNT(keptTris, kept);
-            if (kept && m_triangles.occluded(tri, m_keptOffset[child], kept, ray.maxt)) return true;
-            sp += simd.push(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
-                            stackT + sp);
+            if (kept && countedList(true, kept, [&] { return m_triangles.occluded(tri, m_keptOffset[child], kept, ray.maxt); }))
+                return true;
+            uint32_t near[2];
+            int pushed = simd.push(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
+                                   stackT + sp, near);
+            if (pushed >= 0) {
+                sp += pushed;
+                child = near[0];
+                count = near[1];
+                continue;
+            }
         } else {
-            NORI_OCTREE_COUNT(leaves, 1);
-            NORI_OCTREE_COUNT(leafTris, count);
-            if (m_triangles.occluded(tri, child, count, ray.maxt)) return true;
+            if (countedList(false, count, [&] { return m_triangles.occluded(tri, child, count, ray.maxt); })) return true;
         }
+        if (sp == 0) break;
+        --sp;
+        child = stackChild[sp];
+        count = stackCount[sp];
     }
     return false;
 }

@@ -65,3 +65,34 @@ TEST_F(JudgeFixture, ExactAnswerAgainstAWrongOracle) {
 }
 
 } // namespace
+
+// The exact referee of nori-bench's mismatch counts: right, wrong and undecidable answers.
+TEST_F(JudgeFixture, RefereeDecidesInExactArithmetic) {
+    const std::vector<uint32_t> unit{0};
+    Ray3f down(Point3f(0.25f, 0.25f, 1.0f), Vector3f(0, 0, -1));
+    EXPECT_EQ(judge->referee(down, true, hit(1.0f, 0), unit), 1);
+    EXPECT_EQ(judge->referee(down, false, Hit(), unit), -1);  // a clear hit missed
+    // One ulp outside the hypotenuse x + y = 1 (0.5 + 0.5 + 2^-24 > 1): a hit there is wrong,
+    // a miss right, although every float edge test is within its rounding.
+    Ray3f outside(Point3f(0.5f, std::nextafter(0.5f, 1.0f), 1.0f), Vector3f(0, 0, -1));
+    EXPECT_EQ(judge->referee(outside, true, hit(1.0f, 0), unit), -1);
+    EXPECT_EQ(judge->referee(outside, false, Hit(), unit), 1);
+    Ray3f inside(Point3f(0.5f, std::nextafter(0.5f, 0.0f), 1.0f), Vector3f(0, 0, -1));
+    EXPECT_EQ(judge->referee(inside, true, hit(1.0f, 0), unit), 1);
+    EXPECT_EQ(judge->referee(inside, false, Hit(), unit), -1);
+    // Exactly on the edge: undecidable, for a hit and for a miss.
+    Ray3f onEdge(Point3f(0.5f, 0.5f, 1.0f), Vector3f(0, 0, -1));
+    EXPECT_EQ(judge->referee(onEdge, true, hit(1.0f, 0), unit), 0);
+    EXPECT_EQ(judge->referee(onEdge, false, Hit(), unit), 0);
+    // Several candidates: a ray along -y from (0.25, 1, -0.5) misses the unit triangle (it never
+    // reaches z = 0) and meets the ground on prim 3's side of its diagonal x = z.
+    Ray3f toGround(Point3f(0.25f, 1.0f, -0.5f), Vector3f(0, -1, 0));
+    EXPECT_EQ(judge->referee(toGround, true, hit(1.0f, 3), {0, 2, 3}), 1);
+    EXPECT_EQ(judge->referee(toGround, true, hit(1.0f, 2), {0, 2, 3}), -1);
+    EXPECT_EQ(judge->referee(toGround, false, Hit(), {0, 2, 3}), -1);
+    // A hit beyond the segment's end: the segment [0, 0.5] of `down` stops short of the triangle.
+    Ray3f shortDown(Point3f(0.25f, 0.25f, 1.0f), Vector3f(0, 0, -1), 0.0f, 0.5f);
+    EXPECT_EQ(judge->referee(shortDown, true, hit(1.0f, 0), unit), -1);
+    EXPECT_EQ(judge->referee(shortDown, false, Hit(), unit), 1);
+    EXPECT_EQ(judge->referee(toGround, true, hit(1.0f, 0), {0, 2, 3}), -1);
+}

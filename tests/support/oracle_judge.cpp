@@ -89,6 +89,35 @@ bool OracleJudge::oracleIsWrong(const Ray3f &ray, bool hitA, const Hit &a, bool 
     return bMissed || (hitA && tB > tA + margin / dn);
 }
 
+int OracleJudge::referee(const Ray3f &ray, bool hit, const Hit &h, const std::vector<uint32_t> &candidates) const {
+    const double dn = ray.d.cast<double>().norm();
+    const double margin = 1e-9 * std::max(epsilon(ray, hit, h, false, h) * 0x1p17, 1e-30);
+    // The exact closest crossing among the candidates; `doubtful` when a crossing's inside/outside
+    // or in/out of [mint, maxt] is within the margin.
+    double best = Infinity, bestDoubt = Infinity;  // nearest certain hit, nearest possible hit
+    double mine = Infinity;                         // this answer's own exact t (if it may be hit)
+    bool mineCertain = false;
+    for (uint32_t prim : candidates) {
+        double t, inside;
+        if (!exactOnPlane(ray, prim, t, inside)) continue;
+        const double lo = double(ray.mint), hi = double(ray.maxt), m = margin / dn;
+        const bool certain = inside > margin && t > lo + m && t < hi - m;
+        const bool possible = inside >= -margin && t >= lo - m && t <= hi + m;
+        if (certain) best = std::min(best, t);
+        if (possible) bestDoubt = std::min(bestDoubt, t);
+        if (hit && prim == h.prim && possible) mine = t, mineCertain = certain;
+    }
+    if (!hit) {
+        if (best < Infinity) return -1;  // a candidate is certainly crossed
+        return bestDoubt < Infinity ? 0 : 1;
+    }
+    if (mine == Infinity) return -1;  // its triangle is certainly missed
+    const double m = margin / dn;
+    if (mine > best + m) return -1;   // a certain crossing lies nearer
+    if (!mineCertain || mine > bestDoubt + m) return 0;
+    return 1;
+}
+
 /// Does the ray pass within eps of one of the triangle's three edges, i.e. would moving it by
 /// eps turn this hit into a miss? Only the piece of the ray that can come near the triangle
 /// (two edge lengths around the hit) is considered.

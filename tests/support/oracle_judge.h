@@ -41,6 +41,13 @@ public:
     /// \brief Verdict for \p ray answered by (hitA, a), the accelerator under test, and (hitB, b),
     /// the oracle; symmetric in the two answers except for OracleError.
     Verdict judge(const Ray3f &ray, bool hitA, const Hit &a, bool hitB, const Hit &b) const;
+    /// \brief Referee for answers that differ: is (\p hit, \p h) the exact closest hit among
+    /// the triangles \p candidates (the ones the compared answers name), decided in double?
+    /// Returns +1 right, -1 wrong, 0 undecidable (a candidate within ~1e-9 of the problem's
+    /// scale of an edge, of the segment's ends, or of the other's t). The exact arithmetic that
+    /// decides which of two disagreeing float answers, e.g. on rays through a thin blade's edge,
+    /// is the true one.
+    int referee(const Ray3f &ray, bool hit, const Hit &h, const std::vector<uint32_t> &candidates) const;
     /// \brief eps of the rule for these answers (exposed for tests and reports).
     double epsilon(const Ray3f &ray, bool hitA, const Hit &a, bool hitB, const Hit &b) const;
 
