@@ -40,13 +40,12 @@ Intersector parseIntersector(const PropertyList &props, const std::string &defau
 const char *intersectorName(Intersector kind) { return kind == Intersector::MT ? "mt" : "watertight"; }
 
 TriangleRay::TriangleRay(const Ray3f &ray) {
-    for (int i = 0; i < 3; ++i) {
-        o[i] = ray.o[i];
-        d[i] = ray.d[i];
-    }
+    // Component by component: a loop over the Eigen vectors compiled to two calls of memmove.
+    o[0] = ray.o.x(), o[1] = ray.o.y(), o[2] = ray.o.z();
+    d[0] = ray.d.x(), d[1] = ray.d.y(), d[2] = ray.d.z();
     mint = ray.mint;
     // Woop et al. 2013, section 3: shear/scale so that the ray becomes the +z axis.
-    float ax = std::abs(d[0]), ay = std::abs(d[1]), az = std::abs(d[2]);
+    const float ax = std::abs(d[0]), ay = std::abs(d[1]), az = std::abs(d[2]);
     kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     kx = kz == 2 ? 0 : kz + 1;
     ky = kx == 2 ? 0 : kx + 1;
@@ -55,7 +54,7 @@ TriangleRay::TriangleRay(const Ray3f &ray) {
     sy = d[ky] / d[kz];
     sz = 1.0f / d[kz];
     for (int a = 0; a < 3; ++a) {
-        neg[a] = std::signbit(ray.d[a]) ? 1 : 0;
+        neg[a] = std::signbit(d[a]) ? 1 : 0;
         rcpNear[a] = ray.dRcp[a] * (1.0f - 0x1p-20f);
         rcpFar[a] = ray.dRcp[a] * (1.0f + 0x1p-20f);
     }
@@ -187,26 +186,25 @@ inline float signedFloat(double x) {
 /// estimate exceeds its tolerance. A lane holding \p skipPrim (the closest hit so far, met again
 /// in another leaf) is no hit: its t is known already.
 template <int L>
-[[gnu::noinline, gnu::cold]] VFloat<L> exactPlaneT(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n,
-                                                    uint32_t i, VFloat<L> t, uint32_t skipPrim) {
+[[gnu::noinline]] VFloat<L> exactPlaneT(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
+                                        VFloat<L> t, uint32_t skipPrim) {
+    // Not [[gnu::cold]]: GCC optimizes cold functions for size, which turned the nine corner
+    // loads into loops through the stack (twice the instructions of this straight-line code).
     float out[L];
     t.storeu(out);
     NORI_TRIANGLE_COUNT(exactT, __builtin_popcount(bits(redo)));
+    const size_t s = n;  // row stride
     for (unsigned b = bits(redo); b; b &= b - 1) {
         const int j = __builtin_ctz(b);
+        const float *c = rows + i + uint32_t(j);  // corner coordinates of lane j: c[row * s]
         if (primAt(rows, n, i + uint32_t(j)) == skipPrim) {  // already the closest hit: no news
             out[j] = std::numeric_limits<float>::quiet_NaN();
             continue;
         }
-        double p[3][3];
-        for (int v = 0; v < 3; ++v)
-            for (int c = 0; c < 3; ++c) p[v][c] = rows[size_t(3 * v + c) * n + i + uint32_t(j)];
-        double e1[3], e2[3], w[3];
-        for (int c = 0; c < 3; ++c) {
-            e1[c] = p[1][c] - p[0][c];
-            e2[c] = p[2][c] - p[0][c];
-            w[c] = p[0][c] - double(r.o[c]);
-        }
+        const double p0x = c[0], p0y = c[s], p0z = c[2 * s];
+        const double e1[3] = {c[3 * s] - p0x, c[4 * s] - p0y, c[5 * s] - p0z};
+        const double e2[3] = {c[6 * s] - p0x, c[7 * s] - p0y, c[8 * s] - p0z};
+        const double w[3] = {p0x - double(r.o[0]), p0y - double(r.o[1]), p0z - double(r.o[2])};
         const double nx = e1[1] * e2[2] - e1[2] * e2[1], ny = e1[2] * e2[0] - e1[0] * e2[2],
                      nz = e1[0] * e2[1] - e1[1] * e2[0];
         const double num = nx * w[0] + ny * w[1] + nz * w[2];
