@@ -507,7 +507,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             kept.reserve(best);
             for (size_t k = 0; k < best; ++k) {
                 kept.push_back(ids[candidates[k].i].id & ~kLooseBit);
-                keptBox.expandBy(ids[candidates[k].i].b);
+                const Ref &r = ids[candidates[k].i];
+                keptBox.expandBy(BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]), Point3f(r.hi[0], r.hi[1], r.hi[2])));
                 masks[candidates[k].i] = 0;
             }
             gather();
