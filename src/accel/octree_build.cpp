@@ -459,9 +459,9 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     const double boxArea = area(box);
     auto probability = [&](int c) { return boxArea > 0.0 ? area(boxes[c]) / boxArea : 1.0; };
 
-    // Large triangles stay in the node (`sah`), tested before its children by every ray that
-    // reaches it. In units of the cost model, per triangle t (w: one triangle test, a
-    // sixteenth of a chunk):
+    // Large triangles stay in the node (`sah`), tested by every ray that reaches it and enters
+    // their bounding box (octree_traversal.cpp). In units of the cost model, per triangle t
+    // (w: one triangle test, a sixteenth of a chunk):
     //  - copied down, t costs sum over its children c of P(c) * w, and a ray that hits t must
     //    first descend to one of its leaves, about D more node visits (D: the levels this
     //    subtree will have, log8 of its chunks); a ray hits t with probability about
@@ -478,6 +478,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     // every cell (Ulrich 2000, "Loose octrees"; Havran 2000, "Heuristic ray shooting
     // algorithms", 4.4).
     std::vector<uint32_t> kept;
+    BoundingBox3f keptBox;
     if (sah && n > 16) {
         const double w = Cost::kChunk / 16.0;
         const double descent = std::max(1.0, std::log(double(n) / 16.0) / std::log(8.0)) * Cost::kNode;
@@ -515,6 +516,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             kept.reserve(best);
             for (size_t k = 0; k < best; ++k) {
                 kept.push_back(ids[candidates[k].i].id & ~kLooseBit);
+                const Ref &r = ids[candidates[k].i];
+                keptBox.expandBy(BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]), Point3f(r.hi[0], r.hi[1], r.hi[2])));
                 masks[candidates[k].i] = 0;
             }
             gather();
@@ -554,6 +557,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     auto node = std::make_unique<TempNode>();
     node->pattern = pattern;
     node->kept = std::move(kept);
+    node->keptBox = keptBox;
     // The children's lists, one after the other in one block.
     size_t start[9] = {};
     for (int c = 0; c < 8; ++c) {
