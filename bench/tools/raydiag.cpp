@@ -118,6 +118,9 @@ int main(int argc, char **argv) {
                         double(g_octreeCounters.keptLists) / n, double(g_octreeCounters.keptChunks) / n);
             for (int b = 0; b < 6; ++b)
                 std::printf(" %.2f/%.2f", double(g_octreeCounters.leavesBySize[b]) / n, double(g_octreeCounters.chunksBySize[b]) / n);
+            std::printf("\n         kept lists/chunks by list size (<=4, 16, 64, 256, more):");
+            for (int b = 0; b < 5; ++b)
+                std::printf(" %.2f/%.2f", double(g_octreeCounters.keptBySize[b]) / n, double(g_octreeCounters.keptChunksBySize[b]) / n);
             std::printf("\n");
         };
         report("primary", primary, false);

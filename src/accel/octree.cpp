@@ -79,7 +79,7 @@ bool OctreeAccel::occluded(const Ray3f &ray) const {
 }
 
 size_t OctreeAccel::bytes() const {
-    return m_nodes.capacity() * sizeof(OctreeNode) + m_keptOffset.capacity() * sizeof(uint32_t) + m_triangles.bytes();
+    return m_nodes.capacity() * sizeof(OctreeNode) + m_kept.capacity() * sizeof(OctreeKept) + m_triangles.bytes();
 }
 
 std::vector<AccelStat> OctreeAccel::statistics() const {

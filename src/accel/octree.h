@@ -40,13 +40,21 @@ struct alignas(64) OctreeNode {
 
     /// A reference to an inner node (in its parent's count, or the root's): kInner, the node's
     /// pattern code in bits 25-30, and the number of large triangles the node keeps itself
-    /// (tested before its children; OctreeAccel::m_keptOffset says where they are).
+    /// (OctreeAccel::m_kept says where they are and what box they fill).
     static constexpr uint32_t kInner = 0x80000000u;
     static constexpr int kPatternShift = 25;
     static constexpr uint32_t kKeptMask = (1u << kPatternShift) - 1u;
     static uint32_t innerRef(const Pattern &p, uint32_t kept) { return kInner | p.code() << kPatternShift | kept; }
 };
 static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
+
+/// \brief Where an inner node's kept triangles are (word offset in the TriangleStore) and the
+/// bounding box of those triangles, so that a ray that does not enter the box, or enters it
+/// only beyond its closest hit so far, skips them.
+struct OctreeKept {
+    float lo[3], hi[3];
+    uint32_t offset;
+};
 
 /// \brief Octree accelerator. Properties: `buildRule` (sah* | count | seed), `maxDepth`,
 /// `leafSize` (a node with fewer triangles is a leaf), `overlap` (bbox | exact*), `traversal`
@@ -68,7 +76,10 @@ static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
 /// Traversal (octree_traversal.cpp): every traversal culls a child whose entry distance lies
 /// beyond the closest hit so far and never stops early (except `seed`), so the first-found
 /// hit in a leaf may lie outside that leaf's cell without breaking exactness. Leaves test their
-/// triangles sixteen at a time, nearest chunk first (TriangleStore).
+/// triangles sixteen at a time, nearest chunk first (TriangleStore). A node's kept triangles
+/// are tested only by rays that enter their bounding box: by `simd` right away if the box comes
+/// before the node's nearest child, else when the box's turn comes among the waiting children
+/// (so that a closer hit found meanwhile culls them); by the any-hit traversal first.
 class OctreeAccel : public Accel {
 public:
     /// \brief How children are visited.
@@ -107,6 +118,7 @@ public:
         uint32_t index, ref;
         int depth;
         const OctreeNode &node;
+        const OctreeKept &kept;  ///< its kept list (ref & OctreeNode::kKeptMask triangles)
     };
     /// \brief Call \p visit for every inner node, parents before children.
     template <typename Visit> void forEachNode(Visit visit) const {
@@ -116,7 +128,7 @@ public:
             auto [index, refDepth] = stack.back();
             stack.pop_back();
             const OctreeNode &node = m_nodes[index];
-            visit(NodeView{index, refDepth.first, refDepth.second, node});
+            visit(NodeView{index, refDepth.first, refDepth.second, node, m_kept[index]});
             for (int c = 0; c < 8; ++c)
                 if (node.count[c] & OctreeNode::kInner) stack.push_back({node.child[c], {node.count[c], refDepth.second + 1}});
         }
@@ -146,9 +158,9 @@ private:
     Intersector m_intersector;
 
     // Structure: node 0 is the root (always an inner node), referenced as (0, m_rootCount).
-    // m_keptOffset holds, per node, the word offset of its kept triangles in m_triangles.
+    // m_kept holds, per node, where its kept triangles are in m_triangles and their box.
     std::vector<OctreeNode> m_nodes;
-    std::vector<uint32_t> m_keptOffset;
+    std::vector<OctreeKept> m_kept;
     uint32_t m_rootCount = 0;
     TriangleStore m_triangles;
 
@@ -168,6 +180,8 @@ struct OctreeCounters {
     uint64_t keptLists = 0, keptChunks = 0;  ///< kept lists tested, and their chunks
     /// Leaves tested and their chunks, by leaf size: up to 16, 32, 64, 128, 256 triangles, more.
     uint64_t leavesBySize[6] = {}, chunksBySize[6] = {};
+    /// Kept lists tested and their chunks, by size: up to 4, 16, 64, 256 triangles, more.
+    uint64_t keptBySize[5] = {}, keptChunksBySize[5] = {};
 };
 extern OctreeCounters g_octreeCounters;
 #endif

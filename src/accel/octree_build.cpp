@@ -7,6 +7,7 @@
 #include <tbb/task_group.h>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 
 namespace nori::octree_build {
@@ -149,26 +150,43 @@ struct Classifier {
         }
         (void)cell;
     }
-    unsigned mask(const BoundingBox3f &b) const {
+    /// Cells along axis \p a that the extent [lo, hi] reaches, for an axis of \p P planes
+    /// (P = 0, 1, 3 or 7: no, one, two or three bisections along it).
+    template <int P, bool OneSide> unsigned axisMask(int a, float lo, float hi) const {
+        if constexpr (P == 0) {
+            return 0xFFu;
+        } else {
+            unsigned first = 0, last = 0;
+            for (int k = 0; k < P; ++k) {
+                if constexpr (OneSide) {
+                    // Slabs whose open interior the box reaches; a box in a plane takes the upper slab.
+                    first += plane[a][k] <= lo;
+                    last += plane[a][k] < hi;
+                } else {
+                    first += plane[a][k] < lo;
+                    last += plane[a][k] <= hi;
+                }
+            }
+            if constexpr (OneSide) last = last > first ? last : first;
+            return range[a][first][last];
+        }
+    }
+    /// mask() for a known number of planes per axis (see withMask()): the loops unrolled, no
+    /// branch per box.
+    template <int PX, int PY, int PZ, bool OneSide> unsigned maskOf(const float lo[3], const float hi[3]) const {
+        return axisMask<PX, OneSide>(0, lo[0], hi[0]) & axisMask<PY, OneSide>(1, lo[1], hi[1]) &
+               axisMask<PZ, OneSide>(2, lo[2], hi[2]);
+    }
+    /// The same for any layout of planes.
+    unsigned mask(const float lo[3], const float hi[3]) const {
         unsigned m = 0xFFu;
         for (int a = 0; a < 3; ++a) {
             int first = 0, last = 0;
-            if (oneSide) {
-                // Slabs whose open interior the box reaches; a box in a plane takes the upper slab.
-                for (int k = 0; k < planes[a]; ++k) {
-                    first += plane[a][k] <= b.min[a];
-                    last += plane[a][k] < b.max[a];
-                }
-                last = last > first ? last : first;
-            } else if (planes[a] == 1) {  // the common case: one bisection of this axis
-                first = plane[a][0] < b.min[a];
-                last = plane[a][0] <= b.max[a];
-            } else {
-                for (int k = 0; k < planes[a]; ++k) {
-                    first += plane[a][k] < b.min[a];
-                    last += plane[a][k] <= b.max[a];
-                }
+            for (int k = 0; k < planes[a]; ++k) {
+                first += oneSide ? plane[a][k] <= lo[a] : plane[a][k] < lo[a];
+                last += oneSide ? plane[a][k] < hi[a] : plane[a][k] <= hi[a];
             }
+            if (oneSide) last = last > first ? last : first;
             m &= range[a][first][last];
         }
         return m;
@@ -176,9 +194,57 @@ struct Classifier {
 };
 
 
-struct Ref;
-std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
-                                std::vector<Ref> &refs, int depth, double budget);
+/// A reference is a global triangle id; the `sah` rule marks with this bit the triangles that
+/// went down loose (not copied; their bounds are no longer clipped to the cell).
+constexpr uint32_t kLooseBit = 0x80000000u;
+
+/// A triangle reference during the build: its id (with kLooseBit) and its bounds, carried
+/// along so that classifying a node's triangles reads one array in order instead of the
+/// bounds of scattered ids (the build's cache misses). Plain floats: lists of them are
+/// allocated without being initialised first.
+struct Ref {
+    float lo[3], hi[3];  ///< the triangle's own bounds (not clipped)
+    uint32_t id;
+};
+
+/// Classifier::mask for the layout of planes of \p k, as a type (see withMask()).
+template <int PX, int PY, int PZ, bool OneSide> struct MaskOf {
+    const Classifier &k;
+    unsigned operator()(const Ref &r) const { return k.maskOf<PX, PY, PZ, OneSide>(r.lo, r.hi); }
+};
+struct AnyMask {
+    const Classifier &k;
+    unsigned operator()(const Ref &r) const { return k.mask(r.lo, r.hi); }
+};
+
+/// Run \p body with the mask function of \p k specialised for its planes per axis: the ten
+/// layouts of the `sah` rule's three bisections and the classic octants of the other rules
+/// (the classification is the build's innermost loop; a generic loop over the planes cost
+/// about twice as much).
+template <typename Body> void withMask(const Classifier &k, Body &&body) {
+    const int key = 100 * k.planes[0] + 10 * k.planes[1] + k.planes[2];
+    if (k.oneSide) {
+        switch (key) {
+        case 111: return body(MaskOf<1, 1, 1, true>{k});
+        case 310: return body(MaskOf<3, 1, 0, true>{k});
+        case 301: return body(MaskOf<3, 0, 1, true>{k});
+        case 130: return body(MaskOf<1, 3, 0, true>{k});
+        case 31: return body(MaskOf<0, 3, 1, true>{k});
+        case 103: return body(MaskOf<1, 0, 3, true>{k});
+        case 13: return body(MaskOf<0, 1, 3, true>{k});
+        case 700: return body(MaskOf<7, 0, 0, true>{k});
+        case 70: return body(MaskOf<0, 7, 0, true>{k});
+        case 7: return body(MaskOf<0, 0, 7, true>{k});
+        default: break;
+        }
+    } else if (key == 111) {
+        return body(MaskOf<1, 1, 1, false>{k});
+    }
+    body(AnyMask{k});
+}
+
+std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box, Ref *ids,
+                                size_t n, int depth, double budget);
 
 /// Fill in the counters of \p node from its children (after they are built).
 void summarize(TempNode &node) {
@@ -196,15 +262,15 @@ void summarize(TempNode &node) {
     }
 }
 
-/// The child cells among \p mask (those the bounding box \p b touches) that the triangle
+/// The child cells among \p mask (those the bounding box [lo, hi] touches) that the triangle
 /// \p v itself touches. Two candidates with the box inside the cell need no test: the
 /// triangle is connected, reaches both closed sides of the plane between them and stays in
 /// those two cells, so it touches both. Otherwise a corner inside a cell settles that cell,
 /// and the separating-axis test decides the rest.
-__attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const BoundingBox3f &b,
+__attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const float lo[3], const float hi[3],
                                           const BoundingBox3f &cell, const BoundingBox3f cells[8], unsigned mask) {
-    bool inside = b.min.x() >= cell.min.x() && b.min.y() >= cell.min.y() && b.min.z() >= cell.min.z() &&
-                  b.max.x() <= cell.max.x() && b.max.y() <= cell.max.y() && b.max.z() <= cell.max.z();
+    bool inside = lo[0] >= cell.min.x() && lo[1] >= cell.min.y() && lo[2] >= cell.min.z() && hi[0] <= cell.max.x() &&
+                  hi[1] <= cell.max.y() && hi[2] <= cell.max.z();
     if (inside && __builtin_popcount(mask) == 2) return mask;
     unsigned kept = 0;
     for (unsigned m = mask; m; m &= m - 1) {
@@ -216,24 +282,78 @@ __attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const
     return kept ? kept : mask;  // never lose a triangle to rounding
 }
 
-/// A reference is a global triangle id; the `sah` rule marks with this bit the triangles that
-/// went down loose (not copied; their bounds are no longer clipped to the cell).
-constexpr uint32_t kLooseBit = 0x80000000u;
-
-/// A triangle reference during the build: its id (with kLooseBit) and its bounds, carried
-/// along so that classifying a node's triangles reads one array in order instead of the
-/// bounds of scattered ids (the build's cache misses).
-struct Ref {
-    BoundingBox3f b;  ///< the triangle's own bounds (not clipped)
-    uint32_t id;
-};
-
 /// The ids of a list that becomes a leaf, without loose marks.
-std::vector<uint32_t> finish(const std::vector<Ref> &list) {
-    std::vector<uint32_t> ids(list.size());
-    for (size_t i = 0; i < list.size(); ++i) ids[i] = list[i].id & ~kLooseBit;
+std::vector<uint32_t> finish(const Ref *list, size_t n) {
+    std::vector<uint32_t> ids(n);
+    for (size_t i = 0; i < n; ++i) ids[i] = list[i].id & ~kLooseBit;
     return ids;
 }
+
+/// Four floats in one vector register (a GCC/clang vector extension; SSE on x86-64), for the
+/// boxes of the gathering pass. Boxes as (x, y, z, unused).
+typedef float Float4 __attribute__((vector_size(16)));
+inline Float4 load4(const float *p) {
+    Float4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline Float4 load4(const Point3f &p) { return Float4{p.x(), p.y(), p.z(), 0.0f}; }
+// The same comparisons as the scalar code they replace, operand for operand, so that even the
+// sign of a zero bound comes out the same.
+inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
+inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
+
+/// The boxes a node's triangles are clipped to: its children's cells, and for loose triangles
+/// the node's box.
+struct Clips {
+    Float4 lo[9], hi[9];  ///< 0-7: the child cells; 8: the node's box
+    Clips(const BoundingBox3f &box, const BoundingBox3f cells[8]) {
+        for (int c = 0; c < 8; ++c) {
+            lo[c] = load4(cells[c].min);
+            hi[c] = load4(cells[c].max);
+        }
+        lo[8] = load4(box.min);
+        hi[8] = load4(box.max);
+    }
+};
+
+/// Children's reference counts and tight boxes (the union of their triangles' bounds, each
+/// clipped to the child's cell), summed over a run of references.
+struct Gathered {
+    size_t counts[8] = {};
+    Float4 lo[8], hi[8];
+
+    Gathered() {
+        for (int c = 0; c < 8; ++c) {
+            lo[c] = Float4{} + Infinity;
+            hi[c] = Float4{} - Infinity;
+        }
+    }
+    /// Reference \p r goes to the children in \p mask.
+    void add(const Ref &r, unsigned mask, const Clips &clips) {
+        // (x, y, z, hi.x) and (x, y, z, id): the fourth lanes are never used.
+        const Float4 rlo = load4(r.lo), rhi = load4(r.hi);
+        // A loose triangle's part that matters lies in this node's box (by induction).
+        const bool loose = r.id & kLooseBit;
+        for (unsigned m = mask; m; m &= m - 1) {
+            int c = __builtin_ctz(m), k = loose ? 8 : c;
+            ++counts[c];
+            lo[c] = min4(max4(rlo, clips.lo[k]), lo[c]);
+            hi[c] = max4(min4(rhi, clips.hi[k]), hi[c]);
+        }
+    }
+    /// Add the sums of \p g, a later run (ties keep the earlier bound, as one pass would).
+    void merge(const Gathered &g) {
+        for (int c = 0; c < 8; ++c) {
+            counts[c] += g.counts[c];
+            lo[c] = g.lo[c] < lo[c] ? g.lo[c] : lo[c];
+            hi[c] = g.hi[c] > hi[c] ? g.hi[c] : hi[c];
+        }
+    }
+    BoundingBox3f box(int c) const {
+        return BoundingBox3f(Point3f(lo[c][0], lo[c][1], lo[c][2]), Point3f(hi[c][0], hi[c][1], hi[c][2]));
+    }
+};
 
 /// Split \p refs (the triangles touching \p cell, whose clipped bounds are \p box; a node at
 /// \p depth) and recurse. Returns null when the node should stay a leaf.
@@ -246,81 +366,93 @@ std::vector<uint32_t> finish(const std::vector<Ref> &list) {
 /// down loose instead (each into the one child that holds the centre of its bounding box, its
 /// child's box grown to hold it whole: a loose octree, Ulrich 2000), which never adds a
 /// reference.
-std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, const BoundingBox3f &box,
-                                std::vector<Ref> &ids, int depthIn, double budget) {
-    const size_t n = ids.size();
+std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, const BoundingBox3f &box, Ref *ids,
+                                size_t n, int depthIn, double budget) {
     const bool sah = in.rule == Rule::Sah;
     BoundingBox3f cell = cellIn;
     int depth = depthIn;
     OctreeNode::Pattern pattern{{0, 1, 2}};
     BoundingBox3f cells[8];
-    std::vector<uint8_t> masks(n);
+    std::unique_ptr<uint8_t[]> masks(new uint8_t[n]);
     std::optional<Classifier> classifier;
 
     // Which child cells a triangle touches: its bounding box against the cells (see
     // Classifier::oneSide for a box on a plane), refined by the SAT only for straddling
-    // triangles; a loose triangle goes to the cell of its box's centre.
-    auto classify = [&](size_t i) {
-        const uint32_t id = ids[i].id;
-        const BoundingBox3f &b = ids[i].b;
-        unsigned mask = id & kLooseBit ? 1u << slotOf(cell, pattern, b.center()) : classifier->mask(b);
-        if ((mask & (mask - 1)) && !(id & kLooseBit) && in.exact) mask = refine(in.vertices[id], b, cell, cells, mask);
+    // triangles; a loose triangle goes to the cell of its box's centre. \p maskOf: the
+    // classifier's mask function (withMask()).
+    auto classifyOne = [&](size_t i, auto &&maskOf) {
+        const Ref &r = ids[i];
+        unsigned mask;
+        if (r.id & kLooseBit) {
+            Point3f centre(0.5f * (r.lo[0] + r.hi[0]), 0.5f * (r.lo[1] + r.hi[1]), 0.5f * (r.lo[2] + r.hi[2]));
+            mask = 1u << slotOf(cell, pattern, centre);
+        } else {
+            mask = maskOf(r);
+            if ((mask & (mask - 1)) && in.exact) mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, mask);
+        }
         masks[i] = uint8_t(mask);
+        return mask;
+    };
+    auto classify = [&](size_t i) { return classifyOne(i, AnyMask{*classifier}); };
+    // Children's counts and tight boxes over the triangles that go down (mask != 0).
+    size_t counts[8];
+    BoundingBox3f boxes[8];
+    auto setGathered = [&](const Gathered &g) {
+        for (int c = 0; c < 8; ++c) {
+            counts[c] = g.counts[c];
+            boxes[c] = g.box(c);
+        }
+    };
+    auto gather = [&] {
+        Gathered g;
+        const Clips clips(box, cells);
+        for (size_t i = 0; i < n; ++i) g.add(ids[i], masks[i], clips);
+        setGathered(g);
     };
     for (;;) {
         pattern = patternFor(in.rule, cell);
         for (int c = 0; c < 8; ++c) cells[c] = cellOf(cell, pattern, c);
         classifier.emplace(cell, pattern, cells, sah);
-        if (n > 8 * kParallelRefs)
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t> &r) {
-                for (size_t i = r.begin(); i != r.end(); ++i) classify(i);
-            });
-        else
-            for (size_t i = 0; i < n; ++i) classify(i);
+        // Classification and gathering in one pass over the references (in blocks of 4096,
+        // in parallel for large nodes; the blocks' sums are exact whatever their order).
+        withMask(*classifier, [&](auto maskOf) {
+            const Clips clips(box, cells);
+            auto run = [&](size_t begin, size_t end, Gathered &g) {
+                for (size_t i = begin; i < end; ++i) g.add(ids[i], classifyOne(i, maskOf), clips);
+            };
+            Gathered all;
+            if (n > 8 * kParallelRefs) {
+                std::vector<Gathered> parts((n + 4095) / 4096);
+                tbb::parallel_for(size_t(0), parts.size(), [&](size_t b) {
+                    run(4096 * b, std::min(n, 4096 * b + 4096), parts[b]);
+                });
+                for (const Gathered &g : parts) all.merge(g);
+            } else {
+                run(0, n, all);
+            }
+            setGathered(all);
+        });
         // `sah`: every triangle in one and the same child: the split would separate nothing,
         // so the cell shrinks to that child without a node (empty space costs no level of the
-        // traversal, only of maxDepth).
+        // traversal, only of maxDepth). (Every mask is non-empty, so a child that counts every
+        // reference while the counts add up to n holds them all alone.)
         if (!sah || depth + 1 >= in.maxDepth) break;
-        uint8_t first = masks[0];
-        if (__builtin_popcount(first) != 1 ||
-            std::any_of(masks.begin(), masks.end(), [first](uint8_t m) { return m != first; }))
-            break;
-        cell = cells[__builtin_ctz(first)];
+        size_t total = 0;
+        int only = -1;
+        for (int c = 0; c < 8; ++c) {
+            total += counts[c];
+            if (counts[c] == n) only = c;
+        }
+        if (only < 0 || total != n) break;
+        cell = cells[only];
         ++depth;
     }
-
-    // Children's counts and tight boxes over the triangles that go down (mask != 0).
-    size_t counts[8];
-    BoundingBox3f boxes[8];
-    auto gather = [&] {
-        for (int c = 0; c < 8; ++c) {
-            counts[c] = 0;
-            boxes[c] = BoundingBox3f();
-        }
-        for (size_t i = 0; i < n; ++i) {
-            const BoundingBox3f &b = ids[i].b;
-            for (unsigned m = masks[i]; m; m &= m - 1) {
-                int c = __builtin_ctz(m);
-                ++counts[c];
-                // A loose triangle's part that matters lies in this node's box (by induction).
-                const BoundingBox3f &r = ids[i].id & kLooseBit ? box : cells[c];
-                BoundingBox3f &o = boxes[c];
-                for (int a = 0; a < 3; ++a) {
-                    float lo = b.min[a] > r.min[a] ? b.min[a] : r.min[a];
-                    float hi = b.max[a] < r.max[a] ? b.max[a] : r.max[a];
-                    o.min[a] = lo < o.min[a] ? lo : o.min[a];
-                    o.max[a] = hi > o.max[a] ? hi : o.max[a];
-                }
-            }
-        }
-    };
-    gather();
     const double boxArea = area(box);
     auto probability = [&](int c) { return boxArea > 0.0 ? area(boxes[c]) / boxArea : 1.0; };
 
-    // Large triangles stay in the node (`sah`), tested before its children by every ray that
-    // reaches it. In units of the cost model, per triangle t (w: one triangle test, a
-    // sixteenth of a chunk):
+    // Large triangles stay in the node (`sah`), tested by every ray that reaches it and enters
+    // their bounding box (octree_traversal.cpp). In units of the cost model, per triangle t
+    // (w: one triangle test, a sixteenth of a chunk):
     //  - copied down, t costs sum over its children c of P(c) * w, and a ray that hits t must
     //    first descend to one of its leaves, about D more node visits (D: the levels this
     //    subtree will have, log8 of its chunks); a ray hits t with probability about
@@ -337,6 +469,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     // every cell (Ulrich 2000, "Loose octrees"; Havran 2000, "Heuristic ray shooting
     // algorithms", 4.4).
     std::vector<uint32_t> kept;
+    BoundingBox3f keptBox;
     if (sah && n > 16) {
         const double w = Cost::kChunk / 16.0;
         const double descent = std::max(1.0, std::log(double(n) / 16.0) / std::log(8.0)) * Cost::kNode;
@@ -374,6 +507,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             kept.reserve(best);
             for (size_t k = 0; k < best; ++k) {
                 kept.push_back(ids[candidates[k].i].id & ~kLooseBit);
+                const Ref &r = ids[candidates[k].i];
+                keptBox.expandBy(BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]), Point3f(r.hi[0], r.hi[1], r.hi[2])));
                 masks[candidates[k].i] = 0;
             }
             gather();
@@ -413,28 +548,35 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     auto node = std::make_unique<TempNode>();
     node->pattern = pattern;
     node->kept = std::move(kept);
-    std::vector<Ref> lists[8];
+    node->keptBox = keptBox;
+    // The children's lists, one after the other in one block.
+    size_t start[9] = {};
     for (int c = 0; c < 8; ++c) {
-        lists[c].reserve(counts[c]);
+        start[c + 1] = start[c] + counts[c];
         node->box[c] = boxes[c];
     }
-    for (size_t i = 0; i < n; ++i)
-        for (unsigned m = masks[i]; m; m &= m - 1) lists[__builtin_ctz(m)].push_back(ids[i]);
-    masks = {};
+    std::unique_ptr<Ref[]> lists(new Ref[start[8]]);
+    {
+        Ref *out[8];
+        for (int c = 0; c < 8; ++c) out[c] = lists.get() + start[c];
+        for (size_t i = 0; i < n; ++i)
+            for (unsigned m = masks[i]; m; m &= m - 1) *out[__builtin_ctz(m)]++ = ids[i];
+    }
+    masks.reset();
 
     // Depth of each child: one level below, or for the seed's rule one more level for every
     // earlier sibling (its build passes `++ctr` to the children in turn, empty ones included).
     for (int c = 0; c < 8; ++c) node->childDepth[c] = depth + 1 + (in.rule == Rule::Seed ? c : 0);
 
     auto buildChild = [&](int c) {
-        std::vector<Ref> &list = lists[c];
-        if (list.size() >= in.leafSize && node->childDepth[c] < in.maxDepth) {
-            double share = budget * double(list.size()) / double(sum);
-            std::unique_ptr<TempNode> sub = split(in, cells[c], node->box[c], list, node->childDepth[c], share);
+        Ref *list = lists.get() + start[c];
+        const size_t size = counts[c];
+        if (size >= in.leafSize && node->childDepth[c] < in.maxDepth) {
+            double share = budget * double(size) / double(sum);
+            std::unique_ptr<TempNode> sub = split(in, cells[c], node->box[c], list, size, node->childDepth[c], share);
             if (sub) node->inner[c] = std::move(sub);
         }
-        if (!node->inner[c]) node->refs[c] = finish(list);
-        std::vector<Ref>().swap(list);
+        if (!node->inner[c]) node->refs[c] = finish(list, size);
     };
     if (n > kParallelRefs) {
         tbb::task_group group;
@@ -457,9 +599,12 @@ std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, 
                                     const std::vector<uint32_t> &refs) {
     if (refs.size() < in.leafSize || in.maxDepth <= 0) return nullptr;
     double perTriangle = in.rule == Rule::Sah ? kSahRefBudget : kRefBudget;
-    std::vector<Ref> ids(refs.size());
-    for (size_t i = 0; i < refs.size(); ++i) ids[i] = {in.bounds[refs[i]], refs[i]};
-    return split(in, cell, box, ids, 0, perTriangle * double(refs.size()));
+    std::unique_ptr<Ref[]> ids(new Ref[refs.size()]);
+    for (size_t i = 0; i < refs.size(); ++i) {
+        const BoundingBox3f &b = in.bounds[refs[i]];
+        ids[i] = {{b.min.x(), b.min.y(), b.min.z()}, {b.max.x(), b.max.y(), b.max.z()}, refs[i]};
+    }
+    return split(in, cell, box, ids.get(), refs.size(), 0, perTriangle * double(refs.size()));
 }
 
 } // namespace nori::octree_build

@@ -28,7 +28,8 @@ struct TempNode {
     BoundingBox3f box[8];  ///< tight child boxes
     std::unique_ptr<TempNode> inner[8];
     std::vector<uint32_t> refs[8];
-    std::vector<uint32_t> kept;  ///< large triangles tested at this node, before its children
+    std::vector<uint32_t> kept;  ///< large triangles tested at this node
+    BoundingBox3f keptBox;       ///< their bounds
     OctreeNode::Pattern pattern{{0, 1, 2}};
     int childDepth[8] = {};   ///< depth of each child as the build rule counts it
     size_t subtreeNodes = 1;  ///< inner nodes in this subtree, this one included

@@ -19,7 +19,7 @@ constexpr size_t kParallelRefs = 4096;
 /// Where the flattened tree goes.
 struct Layout {
     std::vector<OctreeNode> &nodes;
-    std::vector<uint32_t> &keptOffset;
+    std::vector<OctreeKept> &kept;
     TriangleStore &store;
     const std::vector<std::array<Point3f, 3>> &vertices;
 };
@@ -31,7 +31,8 @@ uint32_t innerCount(const TempNode &node) { return OctreeNode::innerRef(node.pat
 /// \p offset and its leaves after that.
 void flatten(const TempNode &node, uint32_t index, uint32_t offset, const Layout &out) {
     OctreeNode &dst = out.nodes[index];
-    out.keptOffset[index] = offset;
+    out.kept[index] = {{node.keptBox.min.x(), node.keptBox.min.y(), node.keptBox.min.z()},
+                       {node.keptBox.max.x(), node.keptBox.max.y(), node.keptBox.max.z()}, offset};
     if (!node.kept.empty()) {
         out.store.setLeaf(offset, node.kept.data(), uint32_t(node.kept.size()), out.vertices);
         offset += uint32_t(TriangleStore::leafWords(uint32_t(node.kept.size())));
@@ -76,7 +77,7 @@ void flatten(const TempNode &node, uint32_t index, uint32_t offset, const Layout
 
 void OctreeAccel::buildImpl() {
     m_nodes.clear();
-    m_keptOffset.clear();
+    m_kept.clear();
     m_rootCount = 0;
     m_stats = Stats();
     const uint32_t total = triangleCount();
@@ -135,11 +136,11 @@ void OctreeAccel::buildImpl() {
                             root->subtreeRefs);
     m_nodes.resize(root->subtreeNodes);
     m_nodes.shrink_to_fit();
-    m_keptOffset.resize(root->subtreeNodes);
-    m_keptOffset.shrink_to_fit();
+    m_kept.resize(root->subtreeNodes);
+    m_kept.shrink_to_fit();
     m_rootCount = innerCount(*root);
     m_triangles.reset(m_intersector, root->subtreeWords);
-    flatten(*root, 0, 0, Layout{m_nodes, m_keptOffset, m_triangles, vertices});
+    flatten(*root, 0, 0, Layout{m_nodes, m_kept, m_triangles, vertices});
 
     // Statistics over the temporary tree (serial; a few ten thousand nodes).
     m_stats.refs = root->subtreeRefs;

@@ -27,6 +27,9 @@ inline bool countedList(bool kept, uint32_t n, Test test) {
         c.keptLists += 1;
         c.keptTris += n;
         c.keptChunks += chunks;
+        const int size = n <= 4 ? 0 : n <= 16 ? 1 : n <= 64 ? 2 : n <= 256 ? 3 : 4;
+        c.keptBySize[size] += 1;
+        c.keptChunksBySize[size] += chunks;
     } else {
         const int size = n <= 16 ? 0 : n <= 32 ? 1 : n <= 64 ? 2 : n <= 128 ? 3 : n <= 256 ? 4 : 5;
         c.leaves += 1;
@@ -50,8 +53,16 @@ namespace {
 /// Traversal"): a box is never culled for a ray that touches it.
 constexpr float kSlabEps = 0x1p-20f;
 
-/// Enough for the deepest tree: at most seven siblings wait per level.
+/// Enough for the deepest tree: at most seven siblings and one kept list wait per level.
 constexpr int kStackSize = 8 * (OctreeAccel::kMaxDepthLimit + 1);
+
+/// A kept list waiting on the stack is a leaf entry (its offset and count); a measuring build
+/// marks it with this bit so that it is counted as a kept list.
+#ifdef NORI_OCTREE_COUNTERS
+constexpr uint32_t kKeptTag = 0x40000000u;
+#else
+constexpr uint32_t kKeptTag = 0;
+#endif
 
 /// Per-ray data of the scalar child box test.
 struct SlabRay {
@@ -104,6 +115,18 @@ struct SlabRay {
         tnear = t0;
         return t0 <= t1;
     }
+    /// The same test against a node's kept box.
+    bool hit(const OctreeKept &kept, float mint, float maxt, float &tnear) const {
+        float t0 = mint, t1 = maxt;
+        for (int a = 0; a < 3; ++a) {
+            float lo = neg[a] ? kept.hi[a] : kept.lo[a], hi = neg[a] ? kept.lo[a] : kept.hi[a];
+            float tn = (lo - o[a]) * rcpNear[a], tf = (hi - o[a]) * rcpFar[a];
+            t0 = tn > t0 ? tn : t0;
+            t1 = tf < t1 ? tf : t1;
+        }
+        tnear = t0;
+        return t0 <= t1;
+    }
 };
 
 const SlabRay::OctantTable SlabRay::kOctants;
@@ -146,16 +169,17 @@ struct NodeRay {
 
     /// The children of \p node (reached through a reference with pattern \p code) that the ray
     /// enters within [mint, maxt]: the nearest in the ray's octant order goes to \p near (child
-    /// and count, as in OctreeNode), the others onto the stack, farthest first, with their entry
+    /// and count, as in OctreeNode, and its slot), the others onto the stack, farthest first, with their entry
     /// distances. Returns how many were pushed, or -1 when the ray enters no child. Handing the
     /// nearest child over in registers spares the traversal a store and an immediate reload of
     /// the stack top (a store-forwarding stall on the hot path), and its cull test: it was
     /// entered before the closest hit, which cannot have changed since.
     int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
-             float *tnear, uint32_t near[2]) const {
+             float *tnear, uint32_t near[3]) const {
         const uint32_t octant = SlabRay::kOctants[code][signs];
         const U octantLanes(octant);
         int k = 0;
+        uint32_t nearSlot = 0;  // (lane by lane: the slot of the last child pushed)
         for (int j = 0; j < 8; j += L) {
             const U c = U::loadu(kBackToFront + j) ^ octantLanes;
             F t0(mint), t1(maxt);
@@ -174,7 +198,11 @@ struct NodeRay {
                 const uint32_t nearest = (7u - uint32_t(top)) ^ octant;
                 near[0] = node.child[nearest];
                 near[1] = node.count[nearest];
+                near[2] = nearest;
                 hit = hit & lanes::VMask<L>::firstN(uint32_t(top));
+            }
+            if constexpr (L != 8) {
+                if (const unsigned m = bits(hit)) nearSlot = lane(c, 31 - __builtin_clz(m));
             }
             compressStore(hit, lookup8(node.child, c), child + k);
             compressStore(hit, lookup8(node.count, c), count + k);
@@ -186,6 +214,7 @@ struct NodeRay {
             --k;
             near[0] = child[k];
             near[1] = count[k];
+            near[2] = nearSlot;
         }
         return k;
     }
@@ -214,20 +243,40 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     int sp = 0;
     for (;;) {
         if (count & OctreeNode::kInner) {
-            const uint32_t kept = count & OctreeNode::kKeptMask;  // the node's own large triangles first
             NORI_OCTREE_COUNT(nodes, 1);
-            if (kept) countedList(true, kept, [&] { return m_triangles.intersect(tri, m_keptOffset[child], kept, best); });
-            uint32_t near[2];
-            int pushed = simd.push(m_nodes[child], patternOf(count), ray.mint, best.t, stackChild + sp, stackCount + sp,
-                                   stackT + sp, near);
+            const OctreeNode &node = m_nodes[child];
+            uint32_t near[3];
+            int pushed = simd.push(node, patternOf(count), ray.mint, best.t, stackChild + sp, stackCount + sp, stackT + sp, near);
+            // The node's own large triangles, if the ray enters their box: now if that box comes
+            // before the nearest child, else in order of entry among the waiting children.
+            float tk, tc;
+            if (uint32_t kept = count & OctreeNode::kKeptMask; kept && slab.hit(m_kept[child], ray.mint, best.t, tk)) {
+                if (pushed < 0 || !slab.hit(node, int(near[2]), ray.mint, best.t, tc) || tk <= tc) {
+                    countedList(true, kept, [&] { return m_triangles.intersect(tri, m_kept[child].offset, kept, best); });
+                    if (pushed >= 0 && tc > best.t) pushed = -1 - pushed;  // the nearest child now lies beyond the hit
+                } else {
+                    int i = sp + pushed;
+                    for (; i > sp && stackT[i - 1] < tk; --i) {
+                        stackChild[i] = stackChild[i - 1];
+                        stackCount[i] = stackCount[i - 1];
+                        stackT[i] = stackT[i - 1];
+                    }
+                    stackChild[i] = m_kept[child].offset;
+                    stackCount[i] = kept | kKeptTag;
+                    stackT[i] = tk;
+                    ++pushed;
+                }
+            }
             if (pushed >= 0) {  // descend into the nearest child at once
                 sp += pushed;
                 child = near[0];
                 count = near[1];
                 continue;
             }
+            sp += -1 - pushed;  // (-1 - k: k siblings pushed, the nearest child dropped)
         } else {
-            countedList(false, count, [&] { return m_triangles.intersect(tri, child, count, best); });
+            countedList(count & kKeptTag, count & ~kKeptTag,
+                        [&] { return m_triangles.intersect(tri, child, count & ~kKeptTag, best); });
         }
         // Next: the top of the stack, skipping entries beyond the closest hit so far.
         while (sp > 0 && stackT[sp - 1] > best.t) --sp;
@@ -252,11 +301,14 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
     int sp = 0;
     for (;;) {
         if (count & OctreeNode::kInner) {
-            const uint32_t kept = count & OctreeNode::kKeptMask;
             NORI_OCTREE_COUNT(nodes, 1);
-            if (kept && countedList(true, kept, [&] { return m_triangles.occluded(tri, m_keptOffset[child], kept, ray.maxt); }))
+            // The node's own large triangles first (the likeliest occluders), if the ray enters their box.
+            float tk;
+            if (uint32_t kept = count & OctreeNode::kKeptMask;
+                kept && slab.hit(m_kept[child], ray.mint, ray.maxt, tk) &&
+                countedList(true, kept, [&] { return m_triangles.occluded(tri, m_kept[child].offset, kept, ray.maxt); }))
                 return true;
-            uint32_t near[2];
+            uint32_t near[3];
             int pushed = simd.push(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
                                    stackT + sp, near);
             if (pushed >= 0) {
@@ -314,7 +366,7 @@ bool OctreeAccel::intersectSorted(const Ray3f &ray, Hit &hit) const {
             m_triangles.intersect(tri, e.child, e.count, best);
             continue;
         }
-        if (uint32_t kept = e.count & OctreeNode::kKeptMask) m_triangles.intersect(tri, m_keptOffset[e.child], kept, best);
+        if (uint32_t kept = e.count & OctreeNode::kKeptMask) m_triangles.intersect(tri, m_kept[e.child].offset, kept, best);
         const OctreeNode &node = m_nodes[e.child];
         int order[8];
         float tnear[8];
@@ -340,7 +392,7 @@ bool OctreeAccel::occludedSorted(const Ray3f &ray) const {
             continue;
         }
         uint32_t kept = e.count & OctreeNode::kKeptMask;
-        if (kept && m_triangles.occluded(tri, m_keptOffset[e.child], kept, ray.maxt)) return true;
+        if (kept && m_triangles.occluded(tri, m_kept[e.child].offset, kept, ray.maxt)) return true;
         const OctreeNode &node = m_nodes[e.child];
         int order[8];
         float tnear[8];
@@ -369,7 +421,7 @@ float distanceToBox(const OctreeNode &node, int c, const Ray3f &ray) {
 /// The tree as the seed traversal reads it.
 struct SeedTree {
     const std::vector<OctreeNode> &nodes;
-    const std::vector<uint32_t> &keptOffset;
+    const std::vector<OctreeKept> &kept;
     const TriangleStore &store;
 };
 
@@ -377,7 +429,7 @@ bool seedRecurse(const SeedTree &tree, uint32_t index, uint32_t count, const Ray
                  const TriangleRay &tri, Hit &best) {
     // The node's own large triangles count as its first child.
     uint32_t kept = count & OctreeNode::kKeptMask;
-    if (kept && tree.store.intersect(tri, tree.keptOffset[index], kept, best)) return true;
+    if (kept && tree.store.intersect(tri, tree.kept[index].offset, kept, best)) return true;
     const OctreeNode &node = tree.nodes[index];
     int order[8], n = 0;
     float dist[8];
@@ -410,7 +462,7 @@ bool OctreeAccel::intersectSeed(const Ray3f &ray, Hit &hit) const {
     const TriangleRay tri(ray);
     Hit best;
     best.t = ray.maxt;
-    if (!seedRecurse(SeedTree{m_nodes, m_keptOffset, m_triangles}, 0, m_rootCount, ray, slab, tri, best)) return false;
+    if (!seedRecurse(SeedTree{m_nodes, m_kept, m_triangles}, 0, m_rootCount, ray, slab, tri, best)) return false;
     hit = best;
     return true;
 }

@@ -64,6 +64,26 @@ bool clipsToBox(const Point3f &a, const Point3f &b, const Point3f &c, const Boun
     return !poly.empty();
 }
 
+/// 24 x 24 small boxes standing on a ground quad that spans them (two triangles), as in a city
+/// or on a table; the ground is returned separately.
+MeshData boxesOnGround(MeshData &ground) {
+    MeshData boxes;
+    for (int i = 0; i < 24; ++i)
+        for (int j = 0; j < 24; ++j) {
+            MeshData b = scaled(cube(2), 0.2f, Vector3f(-10.0f + 20.0f * i / 23.0f, 0.2f, -10.0f + 20.0f * j / 23.0f));
+            uint32_t base = uint32_t(boxes.positions.size());
+            boxes.positions.insert(boxes.positions.end(), b.positions.begin(), b.positions.end());
+            for (auto f : b.faces) boxes.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+        }
+    BoundingBox3f box;
+    for (const Point3f &p : boxes.positions) box.expandBy(p);
+    float y = box.min.y();
+    ground.positions = {Point3f(box.min.x(), y, box.min.z()), Point3f(box.max.x(), y, box.min.z()),
+                        Point3f(box.max.x(), y, box.max.z()), Point3f(box.min.x(), y, box.max.z())};
+    ground.faces = {{0, 1, 2}, {0, 2, 3}};
+    return boxes;
+}
+
 } // namespace
 
 // The separating-axis test that decides which cells receive a triangle, against clipping:
@@ -134,21 +154,8 @@ TEST(OctreeCells, ChildrenTileTheCellAndStayNearCubic) {
 // of being copied into every cell along the ground. The `count` rule, which copies it, is the
 // control that shows the test can fail.
 TEST(OctreeLargeTriangles, AGroundQuadIsKeptAtTheTopNotCopied) {
-    MeshData boxes;
-    for (int i = 0; i < 24; ++i)
-        for (int j = 0; j < 24; ++j) {
-            MeshData b = scaled(cube(2), 0.2f, Vector3f(-10.0f + 20.0f * i / 23.0f, 0.2f, -10.0f + 20.0f * j / 23.0f));
-            uint32_t base = uint32_t(boxes.positions.size());
-            boxes.positions.insert(boxes.positions.end(), b.positions.begin(), b.positions.end());
-            for (auto f : b.faces) boxes.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
-        }
-    BoundingBox3f box;
-    for (const Point3f &p : boxes.positions) box.expandBy(p);
     MeshData ground;
-    float y = box.min.y();
-    ground.positions = {Point3f(box.min.x(), y, box.min.z()), Point3f(box.max.x(), y, box.min.z()),
-                        Point3f(box.max.x(), y, box.max.z()), Point3f(box.min.x(), y, box.max.z())};
-    ground.faces = {{0, 1, 2}, {0, 2, 3}};
+    MeshData boxes = boxesOnGround(ground);
     Mesh objects(boxes, "boxes"), quad(ground, "ground");
 
     auto alone = statsOf(*buildOctree("sah", {&objects}));
@@ -159,10 +166,18 @@ TEST(OctreeLargeTriangles, AGroundQuadIsKeptAtTheTopNotCopied) {
     EXPECT_GE(s["kept_refs"], 2.0);
     EXPECT_LE(s["triangle_refs"], alone["triangle_refs"] + 2.0 + 0.01 * alone["triangle_refs"]);
     uint32_t rootKept = 0;
+    BoundingBox3f rootKeptBox;
     dynamic_cast<const OctreeAccel &>(*withGround).forEachNode([&](const OctreeAccel::NodeView &v) {
-        if (v.depth == 0) rootKept = v.ref & OctreeNode::kKeptMask;
+        if (v.depth != 0) return;
+        rootKept = v.ref & OctreeNode::kKeptMask;
+        rootKeptBox = BoundingBox3f(Point3f(v.kept.lo[0], v.kept.lo[1], v.kept.lo[2]),
+                                    Point3f(v.kept.hi[0], v.kept.hi[1], v.kept.hi[2]));
     });
     EXPECT_GE(rootKept, 2u);
+    // The kept list's box is the ground's own box, flat: rays that stay above the ground (shadow
+    // rays towards a light, rays stopped by a box) never test the ground.
+    EXPECT_EQ(rootKeptBox.min, quad.bbox().min);
+    EXPECT_EQ(rootKeptBox.max, quad.bbox().max);
 
     auto countAlone = statsOf(*buildOctree("count", {&objects}, 16, 16));
     auto countGround = statsOf(*buildOctree("count", {&objects, &quad}, 16, 16));
@@ -274,5 +289,50 @@ TEST(OctreeBounds, ReferencesAndBytesPerTriangleOnEveryShape) {
                 if (v.node.count[c] & OctreeNode::kInner) boxOf[v.node.child[c]] = b;
             }
         });
+    }
+}
+
+// Kept triangles wait for their turn: a kept list is tested when the ray enters its box, right
+// away if that comes before the node's nearest child, else in order among the waiting
+// children, and skipped once a closer hit is known. Boxes on a ground quad (kept at the root,
+// in a flat box: rays from above enter it after the boxes' cells, so it waits), then the same
+// with a large pane across the whole scene (kept with the ground: their box holds everything,
+// so the list comes first), seen from above, from the side through the pane and along the
+// ground: every answer (closest hit, triangle, t, occlusion) must be brute force's.
+TEST(OctreeLargeTriangles, KeptListsTestedInTurnGiveTheClosestHit) {
+    MeshData groundData;
+    MeshData boxes = boxesOnGround(groundData);
+    MeshData pane;
+    pane.positions = {Point3f(-11, -1, 0.37f), Point3f(11, -1, 0.37f), Point3f(11, 3, 0.37f), Point3f(-11, 3, 0.37f)};
+    pane.faces = {{0, 1, 2}, {0, 2, 3}};
+    Mesh objects(boxes, "boxes"), ground(groundData, "ground"), glass(pane, "pane");
+    for (bool withPane : {false, true}) {
+        std::vector<const Mesh *> meshes{&objects, &ground};
+        if (withPane) meshes.push_back(&glass);
+        auto octree = buildOctree("sah", meshes);
+        auto brute = makeAccel("brute", PropertyList(), meshes);
+        EXPECT_GE(statsOf(*octree)["kept_refs"], withPane ? 4.0 : 2.0);  // the ground (and the pane) stay high
+
+        pcg32 rng(5);
+        auto u = [&] { return float(rng() >> 8) * 0x1p-24f; };
+        size_t hits = 0, differ = 0;
+        for (int i = 0; i < 30000; ++i) {
+            Point3f target(22.0f * u() - 11.0f, 0.5f * u() - 0.05f, 22.0f * u() - 11.0f), origin;
+            switch (i % 3) {
+            case 0: origin = Point3f(22.0f * u() - 11.0f, 2.0f + 6.0f * u(), 22.0f * u() - 11.0f); break;  // above
+            case 1: origin = Point3f(22.0f * u() - 11.0f, 0.1f + 0.5f * u(), 14.0f + 2.0f * u()); break;   // through the pane
+            default: origin = Point3f(-14.0f, 0.02f + 0.05f * u(), 22.0f * u() - 11.0f); break;            // along the ground
+            }
+            Ray3f ray(origin, target - origin, 0.0f, i % 4 == 0 ? 1.0f : Infinity);
+            Hit a, b;
+            bool fa = octree->intersect(ray, a), fb = brute->intersect(ray, b);
+            hits += fb;
+            bool same = fa == fb && (!fa || (a.prim == b.prim && a.t == b.t)) && octree->occluded(ray) == brute->occluded(ray);
+            if (!same && ++differ <= 3)
+                std::printf("[structure] pane %d, ray %d: octree %d t %.9g prim %u, brute %d t %.9g prim %u\n", int(withPane),
+                            i, int(fa), a.t, a.prim, int(fb), b.t, b.prim);
+        }
+        EXPECT_GT(hits, 15000u);
+        EXPECT_EQ(differ, 0u) << (withPane ? "with the pane" : "boxes on the ground");
     }
 }
