@@ -347,15 +347,19 @@ template <int L>
     F U = cx * by - cy * bx;
     F V = ax * cy - ay * cx;
     F W = bx * ay - by * ax;
-    const VMask<L> redo = m & ((U == 0.0f) | (V == 0.0f) | (W == 0.0f));
+    // Hit unless the signs are mixed (zero counts as either sign).
+    VMask<L> valid = m & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
+    if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
+    // A float edge function that is not zero has the exact sign, so a lane with mixed nonzero
+    // signs misses whatever its zeros are: only the lanes that pass need the exact fallback
+    // (and the steps where none passes skip the zero test).
+    const VMask<L> redo = valid & ((U == 0.0f) | (V == 0.0f) | (W == 0.0f));
     if (any(redo)) {
         const Edges<L> e = exactEdgeFunctions(redo, Sheared<L>{{ax, ay, bx, by, cx, cy}}, Edges<L>{U, V, W});
         U = e.U, V = e.V, W = e.W;
+        valid = m & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
+        if (!any(valid)) return {U, V, W, valid};
     }
-    // Hit unless the signs are mixed (zero counts as either sign).
-    const VMask<L> neg = (U < 0.0f) | (V < 0.0f) | (W < 0.0f), pos = (U > 0.0f) | (V > 0.0f) | (W > 0.0f);
-    VMask<L> valid = m & ~(neg & pos);
-    if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
     F det = U + V + W;
     valid = valid & (det != 0.0f);
     const F za = sz * az, zb = sz * bz, zc = sz * cz;
