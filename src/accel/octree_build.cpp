@@ -95,21 +95,6 @@ BoundingBox3f cellOf(const BoundingBox3f &cell, const OctreeNode::Pattern &p, in
     return b;
 }
 
-/// Slot whose cell holds \p point (the upper cell on a plane), by the same arithmetic.
-int slotOf(const BoundingBox3f &cell, const OctreeNode::Pattern &p, const Point3f &point) {
-    BoundingBox3f b = cell;
-    int c = 0;
-    for (int level = 0; level < 3; ++level) {
-        int a = p.axis[level];
-        float mid = 0.5f * (b.min[a] + b.max[a]);
-        bool upper = point[a] >= mid;
-        c = 2 * c + int(upper);
-        if (upper) b.min[a] = mid;
-        else b.max[a] = mid;
-    }
-    return c;
-}
-
 /// The child cells a bounding box touches (closed: touching a plane counts), by a table per
 /// axis: along each axis the eight cells form up to eight slabs, a box covers a run of them,
 /// and range[a][first][last] is the mask of the cells in that run.
@@ -117,6 +102,8 @@ struct Classifier {
     int planes[3] = {};      ///< interior slab boundaries per axis
     float plane[3][7] = {};  ///< their positions, increasing
     uint8_t range[3][8][8] = {};
+    uint8_t axis[3] = {};    ///< the pattern's bisection axes, level by level
+    float mid[7] = {};       ///< bisection planes: level l, cells above prefix q at mid[2^l - 1 + q]
 
     /// Closed cells (false: a box touching a plane goes to both sides, as the `count` and
     /// `seed` rules do) or one side (true, `sah`): a box that only touches a plane from one
@@ -152,6 +139,22 @@ struct Classifier {
             }
         }
         (void)cell;
+        // The plane of bisection l under prefix q is the lower side of the first cell above it
+        // (cellOf's arithmetic: the same float).
+        for (int level = 0; level < 3; ++level) {
+            axis[level] = pattern.axis[level];
+            for (int q = 0; q < (1 << level); ++q)
+                mid[(1 << level) - 1 + q] = cells[((2 * q + 1) << (2 - level))].min[pattern.axis[level]];
+        }
+    }
+    /// Slot whose cell holds the centre of [lo, hi] (the upper cell on a plane).
+    int slotOfCentre(const float lo[3], const float hi[3]) const {
+        int c = 0;
+        for (int level = 0; level < 3; ++level) {
+            const int a = axis[level];
+            c = 2 * c + int(0.5f * (lo[a] + hi[a]) >= mid[(1 << level) - 1 + c]);
+        }
+        return c;
     }
     /// Cells along axis \p a that the extent [lo, hi] reaches, for an axis of \p P planes
     /// (P = 0, 1, 3 or 7: no, one, two or three bisections along it).
@@ -386,9 +389,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     auto classifyOne = [&](size_t i, auto &&maskOf) {
         const Ref &r = ids[i];
         unsigned mask;
-        if (r.id & kLooseBit) {
-            Point3f centre(0.5f * (r.lo[0] + r.hi[0]), 0.5f * (r.lo[1] + r.hi[1]), 0.5f * (r.lo[2] + r.hi[2]));
-            mask = 1u << slotOf(cell, pattern, centre);
+        if (__builtin_expect(r.id & kLooseBit, 0)) {
+            mask = 1u << classifier->slotOfCentre(r.lo, r.hi);
         } else {
             mask = maskOf(r);
             if ((mask & (mask - 1)) && in.exact) mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, mask);
