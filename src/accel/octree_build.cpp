@@ -95,6 +95,21 @@ BoundingBox3f cellOf(const BoundingBox3f &cell, const OctreeNode::Pattern &p, in
     return b;
 }
 
+/// Four floats in one vector register (a GCC/clang vector extension; SSE on x86-64), for the
+/// classification and the gathering pass. Points as (x, y, z, unused).
+typedef float Float4 __attribute__((vector_size(16)));
+typedef int32_t Int4 __attribute__((vector_size(16)));
+inline Float4 load4(const float *p) {
+    Float4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline Float4 load4(const Point3f &p) { return Float4{p.x(), p.y(), p.z(), 0.0f}; }
+// The same comparisons as the scalar code they replace, operand for operand, so that even the
+// sign of a zero bound comes out the same.
+inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
+inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
+
 /// The child cells a bounding box touches (closed: touching a plane counts), by a table per
 /// axis: along each axis the eight cells form up to eight slabs, a box covers a run of them,
 /// and range[a][first][last] is the mask of the cells in that run.
@@ -104,6 +119,11 @@ struct Classifier {
     uint8_t range[3][8][8] = {};
     uint8_t axis[3] = {};    ///< the pattern's bisection axes, level by level
     float mid[7] = {};       ///< bisection planes: level l, cells above prefix q at mid[2^l - 1 + q]
+    /// The classic layout (one bisection per axis, every rule's cubic cells): the three planes
+    /// in one vector, and the mask for each outcome of the six comparisons (bits 0-2: first
+    /// slab per axis, bits 3-5: last slab per axis).
+    Float4 planes111 = {};
+    uint8_t table111[64] = {};
 
     /// Closed cells (false: a box touching a plane goes to both sides, as the `count` and
     /// `seed` rules do) or one side (true, `sah`): a box that only touches a plane from one
@@ -139,6 +159,18 @@ struct Classifier {
             }
         }
         (void)cell;
+        if (planes[0] == 1 && planes[1] == 1 && planes[2] == 1) {
+            planes111 = Float4{plane[0][0], plane[1][0], plane[2][0], Infinity};
+            for (unsigned bits = 0; bits < 64; ++bits) {
+                unsigned m = 0xFFu;
+                for (int a = 0; a < 3; ++a) {
+                    unsigned first = (bits >> a) & 1u, last = (bits >> (3 + a)) & 1u;
+                    if (oneSide) last = last > first ? last : first;
+                    m &= range[a][first][last];
+                }
+                table111[bits] = uint8_t(m);
+            }
+        }
         // The plane of bisection l under prefix q is the lower side of the first cell above it
         // (cellOf's arithmetic: the same float).
         for (int level = 0; level < 3; ++level) {
@@ -183,6 +215,21 @@ struct Classifier {
         return axisMask<PX, OneSide>(0, lo[0], hi[0]) & axisMask<PY, OneSide>(1, lo[1], hi[1]) &
                axisMask<PZ, OneSide>(2, lo[2], hi[2]);
     }
+    /// maskOf<1, 1, 1, OneSide> by two vector comparisons and a table.
+    template <bool OneSide> unsigned mask111(const float lo[3], const float hi[3]) const {
+        // (x, y, z, hi.x) and (x, y, z, id): the fourth plane is +inf, its comparisons false.
+        const Float4 l = load4(lo), h = load4(hi);
+        Int4 first, last;
+        if constexpr (OneSide) {
+            first = planes111 <= l;
+            last = planes111 < h;
+        } else {
+            first = planes111 < l;
+            last = planes111 <= h;
+        }
+        const Int4 bits = (first & Int4{1, 2, 4, 0}) | (last & Int4{8, 16, 32, 0});
+        return table111[bits[0] | bits[1] | bits[2]];
+    }
     /// The same for any layout of planes.
     unsigned mask(const float lo[3], const float hi[3]) const {
         unsigned m = 0xFFu;
@@ -218,6 +265,10 @@ template <int PX, int PY, int PZ, bool OneSide> struct MaskOf {
     const Classifier &k;
     unsigned operator()(const Ref &r) const { return k.maskOf<PX, PY, PZ, OneSide>(r.lo, r.hi); }
 };
+template <bool OneSide> struct Mask111 {
+    const Classifier &k;
+    unsigned operator()(const Ref &r) const { return k.mask111<OneSide>(r.lo, r.hi); }
+};
 struct AnyMask {
     const Classifier &k;
     unsigned operator()(const Ref &r) const { return k.mask(r.lo, r.hi); }
@@ -231,7 +282,7 @@ template <typename Body> void withMask(const Classifier &k, Body &&body) {
     const int key = 100 * k.planes[0] + 10 * k.planes[1] + k.planes[2];
     if (k.oneSide) {
         switch (key) {
-        case 111: return body(MaskOf<1, 1, 1, true>{k});
+        case 111: return body(Mask111<true>{k});
         case 310: return body(MaskOf<3, 1, 0, true>{k});
         case 301: return body(MaskOf<3, 0, 1, true>{k});
         case 130: return body(MaskOf<1, 3, 0, true>{k});
@@ -244,7 +295,7 @@ template <typename Body> void withMask(const Classifier &k, Body &&body) {
         default: break;
         }
     } else if (key == 111) {
-        return body(MaskOf<1, 1, 1, false>{k});
+        return body(Mask111<false>{k});
     }
     body(AnyMask{k});
 }
@@ -294,20 +345,6 @@ std::vector<uint32_t> finish(const Ref *list, size_t n) {
     for (size_t i = 0; i < n; ++i) ids[i] = list[i].id & ~kLooseBit;
     return ids;
 }
-
-/// Four floats in one vector register (a GCC/clang vector extension; SSE on x86-64), for the
-/// boxes of the gathering pass. Boxes as (x, y, z, unused).
-typedef float Float4 __attribute__((vector_size(16)));
-inline Float4 load4(const float *p) {
-    Float4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-inline Float4 load4(const Point3f &p) { return Float4{p.x(), p.y(), p.z(), 0.0f}; }
-// The same comparisons as the scalar code they replace, operand for operand, so that even the
-// sign of a zero bound comes out the same.
-inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
-inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
 
 /// The boxes a node's triangles are clipped to: its children's cells, and for loose triangles
 /// the node's box.
