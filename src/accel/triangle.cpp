@@ -92,31 +92,42 @@ void orderChunks(Keyed *items, uint32_t begin, uint32_t end) {
 
 void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
                             const std::vector<std::array<Point3f, 3>> &vertices) {
-    std::vector<uint32_t> prims(ids, ids + n);
+    constexpr uint32_t kAhead = 8;  // corners prefetched this many triangles ahead (scattered ids)
+    float *rows = m_data.data() + offset;
+    const uint32_t *prims = ids;  // the leaf's triangles in chunk order
     if (n > 16) {
-        std::vector<Keyed> items(n);
+        // Scratch space reused by every leaf a thread writes (no allocation per leaf).
+        thread_local std::vector<Keyed> items;
+        thread_local std::vector<uint32_t> ordered;
+        items.resize(n);
+        ordered.resize(n);
         for (uint32_t i = 0; i < n; ++i) {
+            if (i + kAhead < n) __builtin_prefetch(&vertices[ids[i + kAhead]]);
             const auto &v = vertices[ids[i]];
             items[i] = {v[0] + v[1] + v[2], ids[i]};
         }
         orderChunks(items.data(), 0, n);
-        for (uint32_t i = 0; i < n; ++i) prims[i] = items[i].prim;
+        for (uint32_t i = 0; i < n; ++i) ordered[i] = items[i].prim;
+        prims = ordered.data();
     }
-    float *rows = m_data.data() + offset;
+    std::memcpy(rows + size_t(9) * n, prims, sizeof(uint32_t) * n);
+    for (uint32_t i = 0; i < std::min(n, kAhead); ++i) __builtin_prefetch(&vertices[prims[i]]);
     for (uint32_t i = 0; i < n; ++i) {
+        if (i + kAhead < n) __builtin_prefetch(&vertices[prims[i + kAhead]]);
         const std::array<Point3f, 3> &p = vertices[prims[i]];
-        std::memcpy(rows + size_t(9) * n + i, &prims[i], sizeof(uint32_t));
         for (int v = 0; v < 3; ++v)
             for (int c = 0; c < 3; ++c) rows[(3 * v + c) * n + i] = p[v][c];
     }
     if (n <= 16) return;
-    // Chunk boxes, structure of arrays: rows min x, y, z, max x, y, z of nc floats.
+    // Chunk boxes, structure of arrays: rows min x, y, z, max x, y, z of nc floats (from the
+    // rows just written, corner by corner as before).
     const uint32_t nc = (n + 15) / 16;
     float *boxes = rows + size_t(10) * n;
     for (uint32_t k = 0; k < nc; ++k) {
         BoundingBox3f b;
         for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i)
-            for (int c = 0; c < 3; ++c) b.expandBy(vertices[prims[i]][c]);
+            for (int v = 0; v < 3; ++v)
+                b.expandBy(Point3f(rows[(3 * v) * n + i], rows[(3 * v + 1) * n + i], rows[(3 * v + 2) * n + i]));
         for (int a = 0; a < 3; ++a) {
             boxes[size_t(a) * nc + k] = b.min[a];
             boxes[size_t(3 + a) * nc + k] = b.max[a];
@@ -336,15 +347,19 @@ template <int L>
     F U = cx * by - cy * bx;
     F V = ax * cy - ay * cx;
     F W = bx * ay - by * ax;
-    const VMask<L> redo = m & ((U == 0.0f) | (V == 0.0f) | (W == 0.0f));
+    // Hit unless the signs are mixed (zero counts as either sign).
+    VMask<L> valid = m & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
+    if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
+    // A float edge function that is not zero has the exact sign, so a lane with mixed nonzero
+    // signs misses whatever its zeros are: only the lanes that pass need the exact fallback
+    // (and the steps where none passes skip the zero test).
+    const VMask<L> redo = valid & ((U == 0.0f) | (V == 0.0f) | (W == 0.0f));
     if (any(redo)) {
         const Edges<L> e = exactEdgeFunctions(redo, Sheared<L>{{ax, ay, bx, by, cx, cy}}, Edges<L>{U, V, W});
         U = e.U, V = e.V, W = e.W;
+        valid = m & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
+        if (!any(valid)) return {U, V, W, valid};
     }
-    // Hit unless the signs are mixed (zero counts as either sign).
-    const VMask<L> neg = (U < 0.0f) | (V < 0.0f) | (W < 0.0f), pos = (U > 0.0f) | (V > 0.0f) | (W > 0.0f);
-    VMask<L> valid = m & ~(neg & pos);
-    if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
     F det = U + V + W;
     valid = valid & (det != 0.0f);
     const F za = sz * az, zb = sz * bz, zc = sz * cz;
