@@ -31,9 +31,13 @@ constexpr double kSahRefBudget = 1.5;
 /// Surface-area cost model (Goldsmith & Salmon 1987; MacDonald & Booth 1990): a ray that
 /// enters a box of area A enters a box of area a inside it with probability a / A. The unit is
 /// one inner-node visit (one eight-box slab test and its stack pushes). A sampling profile of
-/// the AVX-512 build (perf, cpu-clock, generated city) put one sixteen-lane triangle chunk at
-/// about three node visits; a sweep of kChunk from 0.5 to 8 moved nori-bench's ratios less
-/// than the machine's noise (bench/README.md).
+/// the AVX-512 build (perf, cpu-clock, generated city, primary rays: 36 % of the time in the
+/// node loop for 5.9 nodes per ray, 32 % in the chunk kernel for 3.4 chunks per ray) puts one
+/// sixteen-lane triangle chunk at about 1.6 node visits. kChunk 2 against the earlier 3, all
+/// 20 bench rows (thread CPU time, octree over Embree, 4 spp): rays 0-12 % faster on 17 rows
+/// (wide 0.94 -> 1.03 primary, tabletop 0.83 -> 0.93 shadow, stadium 0.68 -> 0.75 diffuse,
+/// full dragon 0.71 -> 0.77 diffuse), 2-3 % slower on city and pa5 table (within the noise),
+/// 1-6 % fewer bytes everywhere; 1.5 helps the meshes more but drops city below 0.7 primary.
 ///
 /// A leaf of more than 16 triangles is not tested whole: its chunks are spatially compact
 /// (TriangleStore::setLeaf orders them by median splits) and each has a box, tested sixteen at
@@ -45,7 +49,7 @@ constexpr double kSahRefBudget = 1.5;
 /// keeps the ray ratios within the machine's noise (grass ends with 73 inner nodes).
 struct Cost {
     static constexpr double kNode = 1.0;          ///< visiting an inner node
-    static constexpr double kChunk = 3.0;         ///< sixteen ray/triangle tests
+    static constexpr double kChunk = 2.0;         ///< sixteen ray/triangle tests
     static constexpr double kChunkBoxes = 1.0;    ///< sixteen chunk boxes of a leaf above 16 triangles
     static constexpr double kOtherChunks = 0.1;   ///< share of a leaf's other chunks a ray enters
 
