@@ -97,6 +97,10 @@ void OptionParser::declare(CliApp &cli, BenchOptions &o) {
         ->check(integerIn(1, 1024))->option_text("N")->group(MeasureGroup);
     app.add_option("--repeats", o.repeats, "timed runs per contender and ray set, median reported (default 3)")
         ->check(integerIn(1, 1000))->option_text("R")->group(MeasureGroup);
+    app.add_flag("--cpu-time", o.cpuTime,
+                 "time the ray sets by the thread's CPU time, not the wall clock (needs --threads 1): on a "
+                 "shared machine, time spent waiting for a core counts for neither side")
+        ->group(MeasureGroup);
     app.add_flag("--quick", o.quick,
                  "tiny CI configuration (64x64x1 rays, 1 repeat, depths 6,10; a generated mesh when no --mesh is given)")
         ->group(MeasureGroup);
@@ -130,6 +134,7 @@ void OptionParser::finish(CliApp &cli, BenchOptions &o) {
     for (const CLI::Option *option : cli.app().get_options())
         if (option->count() > 0) o.given.insert(option->get_name());
     for (const std::string &dir : o.searchPath) nori::fileResolver().append(dir);  // like nori -a
+    if (o.cpuTime && o.threads != 1) throw UsageError("--cpu-time needs --threads 1 (one thread's CPU time)");
     if (o.quick) {
         // A tiny configuration for CI; explicit options still win.
         if (!o.wasGiven("--width")) o.width = 64;

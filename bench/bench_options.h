@@ -25,6 +25,9 @@ struct BenchOptions {
     std::vector<std::string> intersectors{"mt", "watertight"};
     int threads = 0;                  ///< 0: all hardware threads
     int repeats = 3;
+    /// --cpu-time: time ray sets by the thread's CPU time instead of the wall clock (single
+    /// thread only): on a shared machine, time spent descheduled is not counted for either side.
+    bool cpuTime = false;
     bool defaultOnly = false;
     bool quick = false;
     bool noBrute = false;             ///< --no-brute (extra)

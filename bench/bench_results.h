@@ -71,6 +71,7 @@ struct MeshResult {
     int threads = 1;
     double loadMs = 0.0;
     int width = 0, height = 0, spp = 0, repeats = 0;
+    std::string clock = "wall";  ///< what timed the ray sets: "wall" or "cpu" (--cpu-time)
     std::string camera;       ///< "framing" (automatic, fov 30) or "scene"
     double rayGenerationMs = 0.0;
     EmbreeResult embree;      ///< default (non-robust) flags: the speed peer

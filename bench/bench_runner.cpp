@@ -34,7 +34,7 @@ double msSince(std::chrono::steady_clock::time_point start) {
 } // namespace
 
 BenchRunner::BenchRunner(const BenchOptions &options, const OctreeCatalog &catalog)
-    : m_options(options), m_catalog(catalog), m_timer(options.threads),
+    : m_options(options), m_catalog(catalog), m_timer(options.threads, options.cpuTime),
       m_threads(options.threads > 0 ? options.threads : tbb::info::default_concurrency()) {}
 
 template <typename Tracer>
@@ -125,6 +125,7 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
     result.threads = m_threads;
     result.loadMs = input.loadMs;
     result.repeats = m_options.repeats;
+    result.clock = m_options.cpuTime ? "cpu" : "wall";
     result.notes = m_catalog.skipped();
     std::vector<const Mesh *> meshes = input.meshPointers();
     MeshTable table(meshes);

@@ -60,6 +60,8 @@ def check_mesh(m, where):
     number(m, "triangles", where, 1, integral=True)
     number(m, "threads", where, 1, integral=True)
     number(m, "load_ms", where, 0)
+    if m.get("clock", "wall") not in ("wall", "cpu"):
+        fail(where, f"clock {m.get('clock')!r} is neither 'wall' nor 'cpu'")
     e = m.get("embree")
     if not isinstance(e, dict):
         fail(where, "missing 'embree'")

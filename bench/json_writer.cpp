@@ -79,6 +79,7 @@ Json meshJson(const MeshResult &m) {
     j["mesh"] = m.mesh;
     j["triangles"] = m.triangles;
     j["threads"] = m.threads;
+    j["clock"] = m.clock;
     j["load_ms"] = number(m.loadMs);
     j["rays"] = {{"camera", m.camera},       {"width", m.width},   {"height", m.height},
                  {"spp", m.spp},             {"repeats", m.repeats}, {"generation_ms", number(m.rayGenerationMs)},

@@ -11,7 +11,8 @@ namespace nori::bench {
 /// with more threads, a tbb::parallel_for over chunks of rays.
 class RayTimer {
 public:
-    explicit RayTimer(int threads) : m_threads(threads) {}
+    /// \p cpuTime: measure the calling thread's CPU time (threads == 1 only).
+    RayTimer(int threads, bool cpuTime) : m_threads(threads), m_cpuTime(cpuTime && threads == 1) {}
 
     /// \brief Trace every ray of \p set with \p tracer (nori::Accel or nori::EmbreeOracle),
     /// write one answer per ray to \p answers (as RaySet::reference) and return milliseconds.
@@ -20,6 +21,7 @@ public:
 
 private:
     int m_threads;
+    bool m_cpuTime;
 };
 
 } // namespace nori::bench
