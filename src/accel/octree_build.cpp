@@ -19,6 +19,9 @@ using Rule = OctreeAccel::BuildRule;
 /// Subtrees with more references than this are built as parallel tasks.
 constexpr size_t kParallelRefs = 4096;
 
+/// How many references ahead the classification prefetches a triangle's corners.
+constexpr size_t kPrefetch = 16;
+
 /// The whole tree holds at most this many references per triangle (see split()): `count` and
 /// `seed` (which copy a triangle into every cell it touches) and `sah` (which sends triangles
 /// down loose once its budget is spent; 1.5 keeps the bytes per triangle below Embree's).
@@ -28,9 +31,13 @@ constexpr double kSahRefBudget = 1.5;
 /// Surface-area cost model (Goldsmith & Salmon 1987; MacDonald & Booth 1990): a ray that
 /// enters a box of area A enters a box of area a inside it with probability a / A. The unit is
 /// one inner-node visit (one eight-box slab test and its stack pushes). A sampling profile of
-/// the AVX-512 build (perf, cpu-clock, generated city) put one sixteen-lane triangle chunk at
-/// about three node visits; a sweep of kChunk from 0.5 to 8 moved nori-bench's ratios less
-/// than the machine's noise (bench/README.md).
+/// the AVX-512 build (perf, cpu-clock, generated city, primary rays: 36 % of the time in the
+/// node loop for 5.9 nodes per ray, 32 % in the chunk kernel for 3.4 chunks per ray) puts one
+/// sixteen-lane triangle chunk at about 1.6 node visits. kChunk 2 against the earlier 3, all
+/// 20 bench rows (thread CPU time, octree over Embree, 4 spp): rays 0-12 % faster on 17 rows
+/// (wide 0.94 -> 1.03 primary, tabletop 0.83 -> 0.93 shadow, stadium 0.68 -> 0.75 diffuse,
+/// full dragon 0.71 -> 0.77 diffuse), 2-3 % slower on city and pa5 table (within the noise),
+/// 1-6 % fewer bytes everywhere; 1.5 helps the meshes more but drops city below 0.7 primary.
 ///
 /// A leaf of more than 16 triangles is not tested whole: its chunks are spatially compact
 /// (TriangleStore::setLeaf orders them by median splits) and each has a box, tested sixteen at
@@ -42,7 +49,7 @@ constexpr double kSahRefBudget = 1.5;
 /// keeps the ray ratios within the machine's noise (grass ends with 73 inner nodes).
 struct Cost {
     static constexpr double kNode = 1.0;          ///< visiting an inner node
-    static constexpr double kChunk = 3.0;         ///< sixteen ray/triangle tests
+    static constexpr double kChunk = 2.0;         ///< sixteen ray/triangle tests
     static constexpr double kChunkBoxes = 1.0;    ///< sixteen chunk boxes of a leaf above 16 triangles
     static constexpr double kOtherChunks = 0.1;   ///< share of a leaf's other chunks a ray enters
 
@@ -92,20 +99,20 @@ BoundingBox3f cellOf(const BoundingBox3f &cell, const OctreeNode::Pattern &p, in
     return b;
 }
 
-/// Slot whose cell holds \p point (the upper cell on a plane), by the same arithmetic.
-int slotOf(const BoundingBox3f &cell, const OctreeNode::Pattern &p, const Point3f &point) {
-    BoundingBox3f b = cell;
-    int c = 0;
-    for (int level = 0; level < 3; ++level) {
-        int a = p.axis[level];
-        float mid = 0.5f * (b.min[a] + b.max[a]);
-        bool upper = point[a] >= mid;
-        c = 2 * c + int(upper);
-        if (upper) b.min[a] = mid;
-        else b.max[a] = mid;
-    }
-    return c;
+/// Four floats in one vector register (a GCC/clang vector extension; SSE on x86-64), for the
+/// classification and the gathering pass. Points as (x, y, z, unused).
+typedef float Float4 __attribute__((vector_size(16)));
+typedef int32_t Int4 __attribute__((vector_size(16)));
+inline Float4 load4(const float *p) {
+    Float4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
 }
+inline Float4 load4(const Point3f &p) { return Float4{p.x(), p.y(), p.z(), 0.0f}; }
+// The same comparisons as the scalar code they replace, operand for operand, so that even the
+// sign of a zero bound comes out the same.
+inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
+inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
 
 /// The child cells a bounding box touches (closed: touching a plane counts), by a table per
 /// axis: along each axis the eight cells form up to eight slabs, a box covers a run of them,
@@ -114,6 +121,13 @@ struct Classifier {
     int planes[3] = {};      ///< interior slab boundaries per axis
     float plane[3][7] = {};  ///< their positions, increasing
     uint8_t range[3][8][8] = {};
+    uint8_t axis[3] = {};    ///< the pattern's bisection axes, level by level
+    float mid[7] = {};       ///< bisection planes: level l, cells above prefix q at mid[2^l - 1 + q]
+    /// The classic layout (one bisection per axis, every rule's cubic cells): the three planes
+    /// in one vector, and the mask for each outcome of the six comparisons (bits 0-2: first
+    /// slab per axis, bits 3-5: last slab per axis).
+    Float4 planes111 = {};
+    uint8_t table111[64] = {};
 
     /// Closed cells (false: a box touching a plane goes to both sides, as the `count` and
     /// `seed` rules do) or one side (true, `sah`): a box that only touches a plane from one
@@ -149,6 +163,34 @@ struct Classifier {
             }
         }
         (void)cell;
+        if (planes[0] == 1 && planes[1] == 1 && planes[2] == 1) {
+            planes111 = Float4{plane[0][0], plane[1][0], plane[2][0], Infinity};
+            for (unsigned bits = 0; bits < 64; ++bits) {
+                unsigned m = 0xFFu;
+                for (int a = 0; a < 3; ++a) {
+                    unsigned first = (bits >> a) & 1u, last = (bits >> (3 + a)) & 1u;
+                    if (oneSide) last = last > first ? last : first;
+                    m &= range[a][first][last];
+                }
+                table111[bits] = uint8_t(m);
+            }
+        }
+        // The plane of bisection l under prefix q is the lower side of the first cell above it
+        // (cellOf's arithmetic: the same float).
+        for (int level = 0; level < 3; ++level) {
+            axis[level] = pattern.axis[level];
+            for (int q = 0; q < (1 << level); ++q)
+                mid[(1 << level) - 1 + q] = cells[((2 * q + 1) << (2 - level))].min[pattern.axis[level]];
+        }
+    }
+    /// Slot whose cell holds the centre of [lo, hi] (the upper cell on a plane).
+    int slotOfCentre(const float lo[3], const float hi[3]) const {
+        int c = 0;
+        for (int level = 0; level < 3; ++level) {
+            const int a = axis[level];
+            c = 2 * c + int(0.5f * (lo[a] + hi[a]) >= mid[(1 << level) - 1 + c]);
+        }
+        return c;
     }
     /// Cells along axis \p a that the extent [lo, hi] reaches, for an axis of \p P planes
     /// (P = 0, 1, 3 or 7: no, one, two or three bisections along it).
@@ -176,6 +218,21 @@ struct Classifier {
     template <int PX, int PY, int PZ, bool OneSide> unsigned maskOf(const float lo[3], const float hi[3]) const {
         return axisMask<PX, OneSide>(0, lo[0], hi[0]) & axisMask<PY, OneSide>(1, lo[1], hi[1]) &
                axisMask<PZ, OneSide>(2, lo[2], hi[2]);
+    }
+    /// maskOf<1, 1, 1, OneSide> by two vector comparisons and a table.
+    template <bool OneSide> unsigned mask111(const float lo[3], const float hi[3]) const {
+        // (x, y, z, hi.x) and (x, y, z, id): the fourth plane is +inf, its comparisons false.
+        const Float4 l = load4(lo), h = load4(hi);
+        Int4 first, last;
+        if constexpr (OneSide) {
+            first = planes111 <= l;
+            last = planes111 < h;
+        } else {
+            first = planes111 < l;
+            last = planes111 <= h;
+        }
+        const Int4 bits = (first & Int4{1, 2, 4, 0}) | (last & Int4{8, 16, 32, 0});
+        return table111[bits[0] | bits[1] | bits[2]];
     }
     /// The same for any layout of planes.
     unsigned mask(const float lo[3], const float hi[3]) const {
@@ -212,6 +269,10 @@ template <int PX, int PY, int PZ, bool OneSide> struct MaskOf {
     const Classifier &k;
     unsigned operator()(const Ref &r) const { return k.maskOf<PX, PY, PZ, OneSide>(r.lo, r.hi); }
 };
+template <bool OneSide> struct Mask111 {
+    const Classifier &k;
+    unsigned operator()(const Ref &r) const { return k.mask111<OneSide>(r.lo, r.hi); }
+};
 struct AnyMask {
     const Classifier &k;
     unsigned operator()(const Ref &r) const { return k.mask(r.lo, r.hi); }
@@ -225,7 +286,7 @@ template <typename Body> void withMask(const Classifier &k, Body &&body) {
     const int key = 100 * k.planes[0] + 10 * k.planes[1] + k.planes[2];
     if (k.oneSide) {
         switch (key) {
-        case 111: return body(MaskOf<1, 1, 1, true>{k});
+        case 111: return body(Mask111<true>{k});
         case 310: return body(MaskOf<3, 1, 0, true>{k});
         case 301: return body(MaskOf<3, 0, 1, true>{k});
         case 130: return body(MaskOf<1, 3, 0, true>{k});
@@ -238,7 +299,7 @@ template <typename Body> void withMask(const Classifier &k, Body &&body) {
         default: break;
         }
     } else if (key == 111) {
-        return body(MaskOf<1, 1, 1, false>{k});
+        return body(Mask111<false>{k});
     }
     body(AnyMask{k});
 }
@@ -288,20 +349,6 @@ std::vector<uint32_t> finish(const Ref *list, size_t n) {
     for (size_t i = 0; i < n; ++i) ids[i] = list[i].id & ~kLooseBit;
     return ids;
 }
-
-/// Four floats in one vector register (a GCC/clang vector extension; SSE on x86-64), for the
-/// boxes of the gathering pass. Boxes as (x, y, z, unused).
-typedef float Float4 __attribute__((vector_size(16)));
-inline Float4 load4(const float *p) {
-    Float4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-inline Float4 load4(const Point3f &p) { return Float4{p.x(), p.y(), p.z(), 0.0f}; }
-// The same comparisons as the scalar code they replace, operand for operand, so that even the
-// sign of a zero bound comes out the same.
-inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
-inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
 
 /// The boxes a node's triangles are clipped to: its children's cells, and for loose triangles
 /// the node's box.
@@ -383,9 +430,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     auto classifyOne = [&](size_t i, auto &&maskOf) {
         const Ref &r = ids[i];
         unsigned mask;
-        if (r.id & kLooseBit) {
-            Point3f centre(0.5f * (r.lo[0] + r.hi[0]), 0.5f * (r.lo[1] + r.hi[1]), 0.5f * (r.lo[2] + r.hi[2]));
-            mask = 1u << slotOf(cell, pattern, centre);
+        if (__builtin_expect(r.id & kLooseBit, 0)) {
+            mask = 1u << classifier->slotOfCentre(r.lo, r.hi);
         } else {
             mask = maskOf(r);
             if ((mask & (mask - 1)) && in.exact) mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, mask);
@@ -418,7 +464,13 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         withMask(*classifier, [&](auto maskOf) {
             const Clips clips(box, cells);
             auto run = [&](size_t begin, size_t end, Gathered &g) {
-                for (size_t i = begin; i < end; ++i) g.add(ids[i], classifyOne(i, maskOf), clips);
+                for (size_t i = begin; i < end; ++i) {
+                    // The corners of a triangle a few references ahead, in case the SAT needs
+                    // them: its cache misses were most of the classification's time.
+                    if (in.exact && i + kPrefetch < end)
+                        __builtin_prefetch(&in.vertices[ids[i + kPrefetch].id & ~kLooseBit]);
+                    g.add(ids[i], classifyOne(i, maskOf), clips);
+                }
             };
             Gathered all;
             if (n > 8 * kParallelRefs) {
@@ -599,9 +651,13 @@ std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, 
                                     const std::vector<uint32_t> &refs) {
     if (refs.size() < in.leafSize || in.maxDepth <= 0) return nullptr;
     double perTriangle = in.rule == Rule::Sah ? kSahRefBudget : kRefBudget;
+    // Each triangle's bounds, as buildImpl() computes them for the scene's box (no array of
+    // them: that would be the build's largest allocation after the corners).
     std::unique_ptr<Ref[]> ids(new Ref[refs.size()]);
     for (size_t i = 0; i < refs.size(); ++i) {
-        const BoundingBox3f &b = in.bounds[refs[i]];
+        const auto &v = in.vertices[refs[i]];
+        BoundingBox3f b;
+        for (int k = 0; k < 3; ++k) b.expandBy(v[k]);
         ids[i] = {{b.min.x(), b.min.y(), b.min.z()}, {b.max.x(), b.max.y(), b.max.z()}, refs[i]};
     }
     return split(in, cell, box, ids.get(), refs.size(), 0, perTriangle * double(refs.size()));

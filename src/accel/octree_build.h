@@ -14,7 +14,6 @@ namespace nori::octree_build {
 /// \brief What the subdivision reads.
 struct Input {
     const std::vector<std::array<Point3f, 3>> &vertices;  ///< corners of every global triangle
-    const std::vector<BoundingBox3f> &bounds;              ///< bounding box of every global triangle
     const std::vector<float> &areas;                       ///< twice the area of every global triangle
     OctreeAccel::BuildRule rule;
     int maxDepth;
@@ -42,7 +41,7 @@ struct TempNode {
 OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3f &cell);
 BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c);
 
-/// \brief Subdivide \p cell (holding the triangles \p refs, whose clipped bounds are \p box),
+/// \brief Subdivide \p cell (holding the triangles \p refs, whose bounds clipped to the cell are \p box),
 /// the root at depth 0. Returns null when the root is best left a single leaf.
 std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
                                     const std::vector<uint32_t> &refs);

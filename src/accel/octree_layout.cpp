@@ -83,9 +83,10 @@ void OctreeAccel::buildImpl() {
     const uint32_t total = triangleCount();
 
     // Gather corners and bounds of every triangle; triangles with a non-finite corner can
-    // never be hit meaningfully and are left out.
-    std::vector<std::array<Point3f, 3>> vertices(total);
-    std::vector<BoundingBox3f> bounds(total);
+    // never be hit meaningfully and are left out. (The corners are appended: no pass that
+    // zeroes them first.)
+    std::vector<std::array<Point3f, 3>> vertices;
+    vertices.reserve(total);
     std::vector<float> areas(total, 0.0f);  // twice each triangle's area, for the `sah` rule
     std::vector<uint32_t> all;
     all.reserve(total);
@@ -93,13 +94,14 @@ void OctreeAccel::buildImpl() {
     for (size_t m = 0; m < m_meshes.size(); ++m) {
         const Mesh *mesh = m_meshes[m];
         for (uint32_t f = 0; f < mesh->triangleCount(); ++f) {
-            uint32_t prim = m_offsets[m] + f;
-            auto &v = vertices[prim];
-            for (int k = 0; k < 3; ++k) v[k] = mesh->vertex(f, k);
+            const uint32_t prim = m_offsets[m] + f;  // == vertices.size()
+            const std::array<Point3f, 3> v{mesh->vertex(f, 0), mesh->vertex(f, 1), mesh->vertex(f, 2)};
+            vertices.push_back(v);
             if (!(v[0].allFinite() && v[1].allFinite() && v[2].allFinite())) continue;
-            for (int k = 0; k < 3; ++k) bounds[prim].expandBy(v[k]);
+            BoundingBox3f bounds;  // (octree_build::subdivide computes the same again)
+            for (int k = 0; k < 3; ++k) bounds.expandBy(v[k]);
             areas[prim] = (v[1] - v[0]).cross(v[2] - v[0]).norm();
-            sceneBox.expandBy(bounds[prim]);
+            sceneBox.expandBy(bounds);
             all.push_back(prim);
         }
     }
@@ -116,7 +118,7 @@ void OctreeAccel::buildImpl() {
         }
     }
 
-    octree_build::Input in{vertices, bounds, areas, m_buildRule, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact};
+    octree_build::Input in{vertices, areas, m_buildRule, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact};
     std::unique_ptr<TempNode> root = octree_build::subdivide(in, cell, sceneBox, all);
     bool rootIsLeaf = !root;
     if (rootIsLeaf) {
@@ -128,7 +130,6 @@ void OctreeAccel::buildImpl() {
         root->refs[0] = std::move(all);
     }
     std::vector<uint32_t>().swap(all);
-    std::vector<BoundingBox3f>().swap(bounds);
     std::vector<float>().swap(areas);
 
     if (root->subtreeWords >= size_t(UINT32_MAX))

@@ -92,31 +92,42 @@ void orderChunks(Keyed *items, uint32_t begin, uint32_t end) {
 
 void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
                             const std::vector<std::array<Point3f, 3>> &vertices) {
-    std::vector<uint32_t> prims(ids, ids + n);
+    constexpr uint32_t kAhead = 8;  // corners prefetched this many triangles ahead (scattered ids)
+    float *rows = m_data.data() + offset;
+    const uint32_t *prims = ids;  // the leaf's triangles in chunk order
     if (n > 16) {
-        std::vector<Keyed> items(n);
+        // Scratch space reused by every leaf a thread writes (no allocation per leaf).
+        thread_local std::vector<Keyed> items;
+        thread_local std::vector<uint32_t> ordered;
+        items.resize(n);
+        ordered.resize(n);
         for (uint32_t i = 0; i < n; ++i) {
+            if (i + kAhead < n) __builtin_prefetch(&vertices[ids[i + kAhead]]);
             const auto &v = vertices[ids[i]];
             items[i] = {v[0] + v[1] + v[2], ids[i]};
         }
         orderChunks(items.data(), 0, n);
-        for (uint32_t i = 0; i < n; ++i) prims[i] = items[i].prim;
+        for (uint32_t i = 0; i < n; ++i) ordered[i] = items[i].prim;
+        prims = ordered.data();
     }
-    float *rows = m_data.data() + offset;
+    std::memcpy(rows + size_t(9) * n, prims, sizeof(uint32_t) * n);
+    for (uint32_t i = 0; i < std::min(n, kAhead); ++i) __builtin_prefetch(&vertices[prims[i]]);
     for (uint32_t i = 0; i < n; ++i) {
+        if (i + kAhead < n) __builtin_prefetch(&vertices[prims[i + kAhead]]);
         const std::array<Point3f, 3> &p = vertices[prims[i]];
-        std::memcpy(rows + size_t(9) * n + i, &prims[i], sizeof(uint32_t));
         for (int v = 0; v < 3; ++v)
             for (int c = 0; c < 3; ++c) rows[(3 * v + c) * n + i] = p[v][c];
     }
     if (n <= 16) return;
-    // Chunk boxes, structure of arrays: rows min x, y, z, max x, y, z of nc floats.
+    // Chunk boxes, structure of arrays: rows min x, y, z, max x, y, z of nc floats (from the
+    // rows just written, corner by corner as before).
     const uint32_t nc = (n + 15) / 16;
     float *boxes = rows + size_t(10) * n;
     for (uint32_t k = 0; k < nc; ++k) {
         BoundingBox3f b;
         for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i)
-            for (int c = 0; c < 3; ++c) b.expandBy(vertices[prims[i]][c]);
+            for (int v = 0; v < 3; ++v)
+                b.expandBy(Point3f(rows[(3 * v) * n + i], rows[(3 * v + 1) * n + i], rows[(3 * v + 2) * n + i]));
         for (int a = 0; a < 3; ++a) {
             boxes[size_t(a) * nc + k] = b.min[a];
             boxes[size_t(3 + a) * nc + k] = b.max[a];
