@@ -156,6 +156,7 @@ template <int L>
 struct Step {
     VFloat<L> t, u, v;
     VMask<L> hit;
+    VMask<L> known{};  ///< for the tests: t from exactPlaneT, crossing known inside (test skipped)
 };
 
 /// Scale of the problem for the t error estimates, in units of t: |d|_inf = |d[kz]|, 1 / |d|_inf
@@ -195,10 +196,12 @@ inline float signedFloat(double x) {
 /// ray up to a few double roundings amplified by the triangle's shape and the ray's grazing
 /// angle: far below float precision. Rare and out of line: taken where the float t's error
 /// estimate exceeds its tolerance. A lane holding \p skipPrim (the closest hit so far, met again
-/// in another leaf) is no hit: its t is known already.
+/// in another leaf) is no hit: its t is known already. The lanes of \p inside are known to cross
+/// the plane strictly inside the triangle (the kernel's barycentrics exceed their rounding
+/// error bound): they skip the inside test below, which they would pass.
 template <int L>
-[[gnu::noinline]] VFloat<L> exactPlaneT(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
-                                        VFloat<L> t, uint32_t skipPrim) {
+[[gnu::noinline]] VFloat<L> exactPlaneT(VMask<L> redo, VMask<L> inside, const TriangleRay &r, const float *rows,
+                                        uint32_t n, uint32_t i, VFloat<L> t, uint32_t skipPrim) {
     // Not [[gnu::cold]]: GCC optimizes cold functions for size, which turned the nine corner
     // loads into loops through the stack (twice the instructions of this straight-line code).
     float out[L];
@@ -222,6 +225,10 @@ template <int L>
         const double den = nx * double(r.d[0]) + ny * double(r.d[1]) + nz * double(r.d[2]);
         if (den == 0.0) continue;  // the ray lies in the plane: the float t stays (see below)
         const double te = num / den;
+        if (bits(inside) >> j & 1u) {
+            out[j] = signedFloat(te);
+            continue;
+        }
         // The float edge test let the lane through (Woop et al.'s decision, kept). Where the
         // exact crossing lies off the triangle (a barycentric coordinate below -2^-24, about
         // the rounding of this double computation on a sliver), i.e. for a ray within the
@@ -235,8 +242,7 @@ template <int L>
         const double nn = nx * nx + ny * ny + nz * nz, tol = 0x1p-24 * nn;
         const double s1 = (x[1] * e2[2] - x[2] * e2[1]) * nx + (x[2] * e2[0] - x[0] * e2[2]) * ny + (x[0] * e2[1] - x[1] * e2[0]) * nz;
         const double s2 = (e1[1] * x[2] - e1[2] * x[1]) * nx + (e1[2] * x[0] - e1[0] * x[2]) * ny + (e1[0] * x[1] - e1[1] * x[0]) * nz;
-        const bool inside = s1 >= -tol && s2 >= -tol && nn - s1 - s2 >= -tol;
-        if (inside) out[j] = signedFloat(te);
+        if (s1 >= -tol && s2 >= -tol && nn - s1 - s2 >= -tol) out[j] = signedFloat(te);
     }
     return VFloat<L>::loadu(out);
 }
@@ -280,16 +286,28 @@ template <int L>
     F v = (dx * qx + dy * qy + dz * qz) * invDet;
     valid = valid & ~((v < 0.0f) | (u + v > 1.0f));
     F t = (e2x * qx + e2y * qy + e2z * qz) * invDet;
+    VMask<L> known{};
     if (any(valid)) {
         const F e1 = max(max(abs(e1x), abs(e1y)), abs(e1z)), e2 = max(max(abs(e2x), abs(e2y)), abs(e2z));
         const F w = max(max(abs(tx), abs(ty)), abs(tz));
         const TScale sc(r);
         const F err = F(0x1p-23f) * (e1 * e2 * F(sc.dInf) * abs(invDet)) * (w * F(sc.rcpDInf) + abs(t));
         const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt);
-        if (any(redo)) t = exactPlaneT(redo, r, rows, n, i, t, skipPrim);
+        if (any(redo)) {
+            // Rounding error bound of u, v and 1 - u - v against the exact barycentrics (inf
+            // norms D = |d|, E = max |e1|, |e2|, |o - p0|): e1, e2, o - p0 rounded once, p, q and
+            // the dot products then add at most 110u D E (|o - p0| + E) / |det| + 6u, and
+            // D E^2 / |det| >= 1/6. Lanes clear of that bound by a factor 3.5 surely cross
+            // inside the triangle.
+            const F e = max(e1, e2);
+            const F bound = F(0x1p-15f) * (F(sc.dInf) * e) * (w + e) * abs(invDet);
+            const VMask<L> inside = (u > bound) & (v > bound) & (F(1.0f) - (u + v) > bound);
+            t = exactPlaneT(redo, inside, r, rows, n, i, t, skipPrim);
+            known = redo & inside;
+        }
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
-    return {t, u, v, valid};
+    return {t, u, v, valid, known};
 }
 
 /// Sheared corners (ax, ay, bx, by, cx, cy) and edge functions of one watertight step.
@@ -366,6 +384,7 @@ template <int L>
     F T = U * za + V * zb + W * zc;
     F invDet = F(1.0f) / det;
     F t = T * invDet;
+    VMask<L> known{};
     // t's error, first order, in units of |d|_inf (with a factor 4 of margin): the sheared
     // corners carry absolute errors of a few u times their magnitudes (u (|x, y|_max +
     // 2 |z|_max)), and the rounding of the edge functions moves the point they weigh by up to
@@ -380,10 +399,20 @@ template <int L>
         const F shape = xymax * xymax * xymax * abs(invDet);
         const F err = F(0x1p-22f) * ((xymax + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
         const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt);
-        if (any(redo)) t = exactPlaneT(redo, r, rows, n, i, t, skipPrim);
+        if (any(redo)) {
+            // Rounding error bound of the edge functions against those of the exact ray and
+            // triangle: each sheared coordinate is off by at most u (2M + 4.1A) (M = xymax,
+            // A = zmax |d|_inf: the corners' z before scaling; |sx|, |sy| <= 1), so U, V and W by
+            // at most 17u M (M + A). Lanes whose three edge functions exceed that by a factor 3.8
+            // surely cross inside the triangle.
+            const F bound = F(0x1p-18f) * xymax * (xymax + zmax * F(sc.dInf));
+            const VMask<L> inside = (abs(U) > bound) & (abs(V) > bound) & (abs(W) > bound);
+            t = exactPlaneT(redo, inside, r, rows, n, i, t, skipPrim);
+            known = redo & inside;
+        }
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
-    return {t, V * invDet, W * invDet, valid};
+    return {t, V * invDet, W * invDet, valid, known};
 }
 
 template <int L>
@@ -487,7 +516,7 @@ bool leafOccluded(Intersector kind, const TriangleRay &ray, const float *rows, u
 template <int L>
 unsigned chunkDecisions(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
                         float maxt, TriangleStore::ChunkAnswers &out) {
-    unsigned hits = 0;
+    unsigned hits = 0, known = 0;
     for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L) {
         Step<L> s = testStep<L>(kind, ray, rows, n, i, maxt);
         float t[L], u[L], v[L];
@@ -499,7 +528,9 @@ unsigned chunkDecisions(Intersector kind, const TriangleRay &ray, const float *r
             out.t[slot] = t[j], out.u[slot] = u[j], out.v[slot] = v[j];
         }
         hits |= bits(s.hit) << (i - 16 * k);
+        known |= bits(s.known & VMask<L>::firstN(std::min(n, 16 * k + 16) - i)) << (i - 16 * k);
     }
+    out.insideKnown = known;
     return out.hits = hits;
 }
 

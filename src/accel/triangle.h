@@ -79,6 +79,10 @@ public:
     /// \brief Each triangle's own decision in chunk k (triangles 16k .. 16k + 15) of a leaf.
     struct ChunkAnswers {
         unsigned hits;  ///< bit i: triangle 16k + i is hit with t in [ray.mint, maxt]
+        /// bit i: t of triangle 16k + i came from the plane equation in double, and the
+        /// kernel's barycentrics cleared their error bound, so the double inside test was skipped
+        /// (the crossing must then lie strictly inside the triangle)
+        unsigned insideKnown;
         float t[16], u[16], v[16];  ///< the kernel's values (meaningful where hit)
     };
     /// \brief Fill \p out for chunk \p k with \p lanes lanes; returns out.hits.

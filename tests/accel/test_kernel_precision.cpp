@@ -194,4 +194,91 @@ TEST(KernelPrecision, HitPointsLieOnTheExactPlaneAtEveryWidth) {
     }
 }
 
+/// Smallest barycentric coordinate, in long double, of the crossing of \p ray with the plane of
+/// \p p (relative to the triangle: 0 on an edge, negative outside); NaN when the ray is parallel.
+long double crossingMinBary(const std::array<Point3f, 3> &p, const Ray3f &ray) {
+    using V = Eigen::Matrix<long double, 3, 1>;
+    const V a = p[0].cast<long double>(), b = p[1].cast<long double>(), c = p[2].cast<long double>();
+    const V o = ray.o.cast<long double>(), d = ray.d.cast<long double>(), n = (b - a).cross(c - a);
+    const V x = o + (n.dot(a - o) / n.dot(d)) * d;
+    const V q[3] = {a, b, c};
+    long double m = 1.0L;
+    for (int k = 0; k < 3; ++k) m = std::min(m, (q[(k + 1) % 3] - q[k]).cross(x - q[k]).dot(n) / n.squaredNorm());
+    return m;
+}
+
+// Where the kernel recomputes t in double (exactPlaneT) it skips the double inside test when its
+// own barycentrics clear a bound on their rounding error. That is sound only if every such
+// crossing lies inside the triangle: checked in long double, at every width, on rays aimed at
+// points 1e-9 .. 1e-2 (relative) inside and outside the edges of huge quads, slivers and
+// ordinary triangles (where the float edge tests let crossings just outside through, which a
+// bound too small would wrongly take as inside), and at interior points.
+TEST(KernelPrecision, InsideTestIsSkippedOnlyWhereTheCrossingIsInside) {
+    pcg32 rng(20261123);
+    auto uniform = [&](float a, float b) { return a + (b - a) * float(rng() >> 8) * 0x1p-24f; };
+    std::vector<std::array<Point3f, 3>> tris = {
+        {Point3f(-1000, 0, -1000), Point3f(-1000, 0, 1000), Point3f(1000, 0, 1000)},
+        {Point3f(-1000, 0, -1000), Point3f(1000, 0, 1000), Point3f(1000, 0, -1000)},
+        {Point3f(-1300, -400, -900), Point3f(1100, 250, -1000), Point3f(100, -30, 1200)},
+        {Point3f(-900, 700, 1000), Point3f(1000, -650, 1100), Point3f(50, 20, -1400)},
+    };
+    while (tris.size() < 12) {  // slivers, as in HitPointsLieOnTheExactPlaneAtEveryWidth
+        Vector3f c(uniform(-8, 8), uniform(-8, 8), uniform(-8, 8)), a(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)),
+            b(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+        float w = std::pow(10.0f, uniform(-4, -2));
+        tris.push_back({Point3f(c), Point3f(c + a), Point3f(c + a + w * b)});
+    }
+    while (tris.size() < 16) {
+        Vector3f c(uniform(-8, 8), uniform(-8, 8), uniform(-8, 8));
+        tris.push_back({Point3f(c), Point3f(c + Vector3f(uniform(-2, 2), uniform(-2, 2), uniform(-2, 2))),
+                        Point3f(c + Vector3f(uniform(-2, 2), uniform(-2, 2), uniform(-2, 2)))});
+    }
+    std::vector<uint32_t> ids(16);
+    for (uint32_t i = 0; i < 16; ++i) ids[i] = i;
+    for (Intersector kind : {Intersector::Watertight, Intersector::MT}) {
+        TriangleStore store;
+        store.reset(kind, TriangleStore::leafWords(16));
+        store.setLeaf(0, ids.data(), 16, tris);
+        size_t known = 0, wrong = 0, outsideHits = 0;
+        for (int k = 0; k < 60000; ++k) {
+            Point3f o(uniform(-10, 10), uniform(-10, 10), uniform(-10, 10));
+            if (k % 2) o.y() = std::ldexp(uniform(0.5f, 1.0f), -int(rng() % 12));  // just above the ground
+            const auto &p = tris[rng() % 16];
+            Vector3f target;
+            if (k % 3 == 0) {  // an interior point
+                float b1 = uniform(0, 1), b2 = uniform(0, 1);
+                if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
+                target = p[0] + b1 * (p[1] - p[0]) + b2 * (p[2] - p[0]);
+            } else {  // beside a point of an edge, across it, by 1e-9 .. 1e-2 of the opposite corner's distance
+                const int e = int(rng() % 3);
+                const Vector3f a = p[size_t(e)], b = p[size_t(e + 1) % 3], c = p[size_t(e + 2) % 3];
+                const Vector3f onEdge = a + uniform(0, 1) * (b - a);
+                const float off = std::pow(10.0f, uniform(-9, -2)) * (rng() % 2 ? 1.0f : -1.0f);
+                target = onEdge + off * (c - onEdge);
+            }
+            const Vector3f d = target - o;
+            if (d.isZero()) continue;
+            const Ray3f ray(o, d);
+            for (int width : TriangleStore::laneWidths()) {
+                TriangleStore::ChunkAnswers ans;
+                store.chunkAnswers(width, TriangleRay(ray), 0, 16, 0, ray.maxt, ans);
+                for (int s = 0; s < 16; ++s) {
+                    const bool hit = (ans.hits >> s) & 1u, isKnown = (ans.insideKnown >> s) & 1u;
+                    const long double m = crossingMinBary(tris[size_t(s)], ray);
+                    if (width == 1) known += isKnown, outsideHits += hit && m < 0.0L;
+                    if (isKnown && !(m > 0.0L) && ++wrong <= 5)
+                        ADD_FAILURE() << intersectorName(kind) << ", " << width << " lanes, triangle " << s
+                                      << ": inside test skipped, but the crossing's smallest barycentric is "
+                                      << double(m) << "; o " << o.transpose() << " d " << d.transpose();
+                }
+            }
+        }
+        std::printf("[ inside   ] %-10s %zu exact-t lanes skipped the inside test; %zu hits cross just outside\n",
+                    intersectorName(kind), known, outsideHits);
+        EXPECT_EQ(wrong, 0u) << intersectorName(kind);
+        EXPECT_GT(known, 10000u) << intersectorName(kind);   // the skip is taken
+        EXPECT_GT(outsideHits, 100u) << intersectorName(kind);  // and the rays reach where it must not be
+    }
+}
+
 } // namespace
