@@ -505,16 +505,19 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     // Large triangles stay in the node (`sah`), tested by every ray that reaches it and enters
     // their bounding box (octree_traversal.cpp). In units of the cost model, per triangle t
     // (w: one triangle test, a sixteenth of a chunk):
-    //  - copied down, t costs sum over its children c of P(c) * w, and a ray that hits t must
-    //    first descend to one of its leaves, about D more node visits (D: the levels this
-    //    subtree will have, log8 of its chunks); a ray hits t with probability about
-    //    2 area(t) / A(node box) (Cauchy: a flat convex surface's mean projected area);
-    //  - kept, t costs w for every ray that reaches the node.
-    // Keeping a set K saves sum over K of sum P(c) * w, plus D * kNode for the rays that hit
+    //  - copied down, t costs sum over its children c of P(c) * w_c (w_c: t's share of child
+    //    c's list, list(n_c) / n_c: w in a list of one chunk, less in a large leaf, whose rays
+    //    meet few of its chunks), and a ray that hits t must first descend to one of its
+    //    leaves, about D more node visits (D: the levels this subtree will have, log8 of its
+    //    chunks); a ray hits t with probability about 2 area(t) / A(node box) (Cauchy: a flat
+    //    convex surface's mean projected area);
+    //  - kept, t costs w for every ray that reaches the node and enters the kept box.
+    // Keeping a set K saves sum over K of sum P(c) * w_c, plus D * kNode for the rays that hit
     // one of K -- with probability at most min(1, sum over K of P(hit t)), since overlapping
-    // or stacked triangles are hit by the same rays -- and costs the kept list (all its chunks,
-    // at least one). The candidates (sum P(c) * w + P(hit t) * D * kNode > w) are taken in
-    // decreasing order of that benefit and the best prefix is kept, if it saves anything: a
+    // or stacked triangles are hit by the same rays -- and costs P(K's box) times the kept
+    // list (all its chunks, at least one). The candidates (sum P(c) * w_c + P(hit t) * D *
+    // kNode > w) are taken in decreasing order of that benefit and the best prefix is kept, if
+    // it saves anything: a
     // ground plane under a city or a table, the walls of a room, the backdrop of a studio,
     // never a small triangle of a scanned mesh high in the tree. This is the cost-model form
     // of storing objects at the level that matches their size instead of copying them into
@@ -526,7 +529,10 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         const double w = Cost::kChunk / 16.0;
         const double descent = std::max(1.0, std::log(double(n) / 16.0) / std::log(8.0)) * Cost::kNode;
         double p[8];
-        for (int c = 0; c < 8; ++c) p[c] = probability(c);
+        // A copy in child c costs the rays that enter c its share of c's list (a sixteenth of
+        // a chunk in a small list, less in a large leaf, whose rays meet few of its chunks).
+        for (int c = 0; c < 8; ++c)
+            p[c] = probability(c) * (counts[c] ? Cost::list(counts[c]) / double(counts[c]) / w : 1.0);
         struct Candidate {
             double copies, hit;
             size_t i;
@@ -546,10 +552,19 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         });
         double copies = 0.0, hit = 0.0, bestSaving = 0.0;
         size_t best = 0;
+        // Only rays that enter the kept box test the list: a prefix that gathers distant
+        // triangles (a floor and a far wall) fills the node's box and is tested by every ray,
+        // so it can lose to a shorter, coherent prefix; the rest go down and may be kept
+        // lower, in boxes of their own.
+        BoundingBox3f prefixBox;
         for (size_t k = 0; k < candidates.size() && k < OctreeNode::kKeptMask; ++k) {
             copies += candidates[k].copies;
             hit += candidates[k].hit;
-            double saving = copies + std::min(1.0, hit) * descent - Cost::list(k + 1);
+            const Ref &r = ids[candidates[k].i];
+            prefixBox.expandBy(BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]).cwiseMax(box.min),
+                                             Point3f(r.hi[0], r.hi[1], r.hi[2]).cwiseMin(box.max)));
+            const double enter = boxArea > 0.0 ? std::min(1.0, area(prefixBox) / boxArea) : 1.0;
+            double saving = copies + std::min(1.0, hit) * descent - enter * Cost::list(k + 1);
             if (saving > bestSaving + 1e-9) {
                 bestSaving = saving;
                 best = k + 1;
@@ -586,7 +601,9 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     const size_t sum = sumDown + kept.size();
     if (sah) {
         // Leaf or split, by the cost model (greedy: the children are priced as leaves).
-        double cost = Cost::kNode + Cost::list(kept.size());
+        BoundingBox3f keptPart(keptBox.min.cwiseMax(box.min), keptBox.max.cwiseMin(box.max));
+        const double enterKept = kept.empty() || boxArea <= 0.0 ? 1.0 : std::min(1.0, area(keptPart) / boxArea);
+        double cost = Cost::kNode + enterKept * Cost::list(kept.size());
         for (int c = 0; c < 8; ++c) cost += probability(c) * Cost::list(counts[c]);
         if (cost >= Cost::list(n)) return nullptr;
     } else if (in.rule == Rule::Count && (sumDown > 4 * down || (largest == down && sumDown >= 2 * down))) {
