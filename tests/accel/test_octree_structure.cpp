@@ -189,7 +189,9 @@ TEST(OctreeLargeTriangles, AGroundQuadIsKeptAtTheTopNotCopied) {
 // Faces lying on split planes: the three planes through the centre of the bounds [-1, 1]^3,
 // finely tessellated (walls of stacked boxes, grid-aligned geometry). A triangle in a plane
 // lies in the closed cells on both sides; the `sah` rule puts it into one of them, so it is
-// neither copied nor kept as "large". The `count` rule (closed cells) copies it into both.
+// not copied. The `count` rule (closed cells) copies it into both. Alone, the planes exhaust
+// the reference budget and go down loose under either rule, so the copies show beside a cloud
+// of small triangles.
 TEST(OctreeSplitPlanes, FacesOnAMidplaneGoToOneSide) {
     MeshData planes;
     const int n = 24;
@@ -210,10 +212,24 @@ TEST(OctreeSplitPlanes, FacesOnAMidplaneGoToOneSide) {
             }
     Mesh mesh(planes, "planes");
     const double tris = double(mesh.triangleCount());
+    // Small triangles all through the cube, so that the reference budget does not run out and
+    // send the planes' triangles down loose whatever the rule (which would hide the copies).
+    MeshData cloudData;
+    pcg32 rng(5);
+    auto u = [&] { return -0.99f + 1.97f * (float(rng() >> 8) * 0x1p-24f); };
+    for (int i = 0; i < 20000; ++i) {
+        float x = u(), y = u(), z = u();
+        addTriangle(cloudData, Point3f(x, y, z), 0.004f);
+    }
+    Mesh cloud(cloudData, "cloud");
+    auto alone = statsOf(*buildOctree("sah", {&cloud}));
+    auto sahBoth = statsOf(*buildOctree("sah", {&cloud, &mesh}));
     auto sah = statsOf(*buildOctree("sah", {&mesh}));
     auto count = statsOf(*buildOctree("count", {&mesh}, 8, 8));
-    std::printf("[structure] %0.f triangles on midplanes: sah refs %.0f (kept %.0f), count refs %.0f\n", tris,
-                sah["triangle_refs"], sah["kept_refs"], count["triangle_refs"]);
+    std::printf("[structure] %0.f triangles on midplanes: sah refs %.0f (kept %.0f), count refs %.0f; with a cloud "
+                "of %zu: refs %.0f -> %.0f, kept %.0f -> %.0f\n", tris,
+                sah["triangle_refs"], sah["kept_refs"], count["triangle_refs"], size_t(cloud.triangleCount()),
+                alone["triangle_refs"], sahBoth["triangle_refs"], alone["kept_refs"], sahBoth["kept_refs"]);
     // Triangles along the lines where two planes cross still straddle the other plane's cells;
     // those may be kept in a thin box instead of being copied (no more references), but the
     // faces that only lie in a plane are neither copied nor kept for lying in it.
@@ -225,9 +241,13 @@ TEST(OctreeSplitPlanes, FacesOnAMidplaneGoToOneSide) {
         for (int a = 0; a < 3; ++a) zeroAxes += b.min[a] <= 0.0f && b.max[a] >= 0.0f;
         onLines += zeroAxes >= 2;
     }
-    std::printf("[structure] %.0f triangles touch a line where two planes cross\n", onLines);
+    std::printf("[structure] %.0f triangles touch a line where two planes cross; sah: %.0f inner nodes, %.1f triangles per leaf\n",
+                onLines, sah["internal_nodes"], sah["avg_tris_per_leaf"]);
     EXPECT_LE(sah["triangle_refs"], 1.1 * tris);
     EXPECT_LE(sah["kept_refs"], onLines);
+    // Beside the cloud (budget to spare) the planes add about their own triangles, not copies
+    // (without the rule: 9,613 more references for 3,456 triangles).
+    EXPECT_LE(sahBoth["triangle_refs"] - alone["triangle_refs"], 1.1 * tris);
     EXPECT_GE(count["triangle_refs"], 1.5 * tris);
 }
 
