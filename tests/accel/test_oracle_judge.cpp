@@ -90,6 +90,11 @@ TEST_F(JudgeFixture, RefereeDecidesInExactArithmetic) {
     EXPECT_EQ(judge->referee(toGround, true, hit(1.0f, 3), {0, 2, 3}), 1);
     EXPECT_EQ(judge->referee(toGround, true, hit(1.0f, 2), {0, 2, 3}), -1);
     EXPECT_EQ(judge->referee(toGround, false, Hit(), {0, 2, 3}), -1);
+    // A ray one ulp beside the quad's diagonal (x = z) names either triangle rightly: the same
+    // point, within rounding of both.
+    Ray3f diagonal(Point3f(0.25f, 1.0f, std::nextafter(0.25f, 1.0f)), Vector3f(0, -1, 0));
+    EXPECT_EQ(judge->referee(diagonal, true, hit(1.0f, 2), {2, 3}), 1);
+    EXPECT_EQ(judge->referee(diagonal, true, hit(1.0f, 3), {2, 3}), 1);
     // A hit beyond the segment's end: the segment [0, 0.5] of `down` stops short of the triangle.
     Ray3f shortDown(Point3f(0.25f, 0.25f, 1.0f), Vector3f(0, 0, -1), 0.0f, 0.5f);
     EXPECT_EQ(judge->referee(shortDown, true, hit(1.0f, 0), unit), -1);

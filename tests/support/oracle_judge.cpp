@@ -91,30 +91,39 @@ bool OracleJudge::oracleIsWrong(const Ray3f &ray, bool hitA, const Hit &a, bool 
 
 int OracleJudge::referee(const Ray3f &ray, bool hit, const Hit &h, const std::vector<uint32_t> &candidates) const {
     const double dn = ray.d.cast<double>().norm();
-    const double margin = 1e-9 * std::max(epsilon(ray, hit, h, false, h) * 0x1p17, 1e-30);
-    // The exact closest crossing among the candidates; `doubtful` when a crossing's inside/outside
-    // or in/out of [mint, maxt] is within the margin.
-    double best = Infinity, bestDoubt = Infinity;  // nearest certain hit, nearest possible hit
-    double mine = Infinity;                         // this answer's own exact t (if it may be hit)
-    bool mineCertain = false;
+    const double eps = epsilon(ray, hit, h, false, h);  // the judge's eps: same point up to float rounding
+    const double margin = 1e-9 * std::max(eps * 0x1p17, 1e-30);
+    const double lo = double(ray.mint), hi = double(ray.maxt), m = margin / dn;
+    // The exact crossings of the candidates: certain (inside and within [mint, maxt] by more
+    // than the margin) or possible (within the margin of that).
+    double best = Infinity, bestDoubt = Infinity;  // nearest certain crossing, nearest possible one
+    bool onCertain = false, onPossible = false;    // the answer's point lies on such a crossing
     for (uint32_t prim : candidates) {
         double t, inside;
         if (!exactOnPlane(ray, prim, t, inside)) continue;
-        const double lo = double(ray.mint), hi = double(ray.maxt), m = margin / dn;
         const bool certain = inside > margin && t > lo + m && t < hi - m;
         const bool possible = inside >= -margin && t >= lo - m && t <= hi + m;
         if (certain) best = std::min(best, t);
         if (possible) bestDoubt = std::min(bestDoubt, t);
-        if (hit && prim == h.prim && possible) mine = t, mineCertain = certain;
+        // Same point: a hit on either of two triangles sharing an edge (or overlapping) at the
+        // same t is the same answer, whichever triangle it names.
+        if (hit && std::abs(t - double(h.t)) * dn <= eps) {
+            onCertain |= certain;
+            onPossible |= possible;
+        }
     }
     if (!hit) {
         if (best < Infinity) return -1;  // a candidate is certainly crossed
         return bestDoubt < Infinity ? 0 : 1;
     }
-    if (mine == Infinity) return -1;  // its triangle is certainly missed
-    const double m = margin / dn;
-    if (mine > best + m) return -1;   // a certain crossing lies nearer
-    if (!mineCertain || mine > bestDoubt + m) return 0;
+    // The named triangle itself must pass within eps of the claimed point (as for a tie).
+    double tNamed, insideNamed;
+    if (!exactOnPlane(ray, h.prim, tNamed, insideNamed) || insideNamed < -eps ||
+        std::abs(tNamed - double(h.t)) * dn > eps)
+        return -1;
+    if (!onPossible) return -1;                             // no candidate is crossed where it claims
+    if ((double(h.t) - best) * dn > eps) return -1;         // a certain crossing lies nearer
+    if (!onCertain || (double(h.t) - bestDoubt) * dn > eps) return 0;
     return 1;
 }
 

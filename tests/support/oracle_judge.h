@@ -43,10 +43,13 @@ public:
     Verdict judge(const Ray3f &ray, bool hitA, const Hit &a, bool hitB, const Hit &b) const;
     /// \brief Referee for answers that differ: is (\p hit, \p h) the exact closest hit among
     /// the triangles \p candidates (the ones the compared answers name), decided in double?
-    /// Returns +1 right, -1 wrong, 0 undecidable (a candidate within ~1e-9 of the problem's
-    /// scale of an edge, of the segment's ends, or of the other's t). The exact arithmetic that
-    /// decides which of two disagreeing float answers, e.g. on rays through a thin blade's edge,
-    /// is the true one.
+    /// A hit is right when its triangle passes within eps of its point, that point lies on a
+    /// crossing of some candidate (within eps in t: a hit on either of two triangles sharing an
+    /// edge is the same answer) and no crossing lies nearer by more than eps; a miss is right
+    /// when no candidate is crossed. Returns +1 right, -1 wrong, 0
+    /// undecidable (a crossing within ~1e-9 of the problem's scale of an edge or of the
+    /// segment's ends). The exact arithmetic that decides which of two disagreeing float
+    /// answers, e.g. on rays past a thin blade's edge, is the true one.
     int referee(const Ray3f &ray, bool hit, const Hit &h, const std::vector<uint32_t> &candidates) const;
     /// \brief eps of the rule for these answers (exposed for tests and reports).
     double epsilon(const Ray3f &ray, bool hitA, const Hit &a, bool hitB, const Hit &b) const;
