@@ -246,14 +246,14 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             NORI_OCTREE_COUNT(nodes, 1);
             const OctreeNode &node = m_nodes[child];
             uint32_t near[3];
-            int pushed = simd.push(node, patternOf(count), ray.mint, best.t, stackChild + sp, stackCount + sp, stackT + sp, near);
+            int pushed = simd.push(node, patternOf(count), ray.mint, tri.cullLimit(best.t), stackChild + sp, stackCount + sp, stackT + sp, near);
             // The node's own large triangles, if the ray enters their box: now if that box comes
             // before the nearest child, else in order of entry among the waiting children.
             float tk, tc;
-            if (uint32_t kept = count & OctreeNode::kKeptMask; kept && slab.hit(m_kept[child], ray.mint, best.t, tk)) {
-                if (pushed < 0 || !slab.hit(node, int(near[2]), ray.mint, best.t, tc) || tk <= tc) {
+            if (uint32_t kept = count & OctreeNode::kKeptMask; kept && slab.hit(m_kept[child], ray.mint, tri.cullLimit(best.t), tk)) {
+                if (pushed < 0 || !slab.hit(node, int(near[2]), ray.mint, tri.cullLimit(best.t), tc) || tk <= tc) {
                     countedList(true, kept, [&] { return m_triangles.intersect(tri, m_kept[child].offset, kept, best); });
-                    if (pushed >= 0 && tc > best.t) pushed = -1 - pushed;  // the nearest child now lies beyond the hit
+                    if (pushed >= 0 && tc > tri.cullLimit(best.t)) pushed = -1 - pushed;  // the nearest child now lies beyond the hit
                 } else {
                     int i = sp + pushed;
                     for (; i > sp && stackT[i - 1] < tk; --i) {
@@ -279,7 +279,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
                         [&] { return m_triangles.intersect(tri, child, count & ~kKeptTag, best); });
         }
         // Next: the top of the stack, skipping entries beyond the closest hit so far.
-        while (sp > 0 && stackT[sp - 1] > best.t) --sp;
+        while (sp > 0 && stackT[sp - 1] > tri.cullLimit(best.t)) --sp;
         if (sp == 0) break;
         --sp;
         child = stackChild[sp];
@@ -361,7 +361,7 @@ bool OctreeAccel::intersectSorted(const Ray3f &ray, Hit &hit) const {
     stack[sp++] = {0, m_rootCount, ray.mint};
     while (sp > 0) {
         StackEntry e = stack[--sp];
-        if (e.tnear > best.t) continue;
+        if (e.tnear > tri.cullLimit(best.t)) continue;
         if (!(e.count & OctreeNode::kInner)) {
             m_triangles.intersect(tri, e.child, e.count, best);
             continue;
@@ -370,7 +370,7 @@ bool OctreeAccel::intersectSorted(const Ray3f &ray, Hit &hit) const {
         const OctreeNode &node = m_nodes[e.child];
         int order[8];
         float tnear[8];
-        int n = sortedChildren(node, slab, ray.mint, best.t, order, tnear);
+        int n = sortedChildren(node, slab, ray.mint, tri.cullLimit(best.t), order, tnear);
         for (int k = n - 1; k >= 0; --k)
             stack[sp++] = {node.child[order[k]], node.count[order[k]], tnear[k]};
     }

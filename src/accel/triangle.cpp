@@ -53,6 +53,7 @@ TriangleRay::TriangleRay(const Ray3f &ray) {
     sx = d[kx] / d[kz];
     sy = d[ky] / d[kz];
     sz = 1.0f / d[kz];
+    cullAbs = 0x1p-18f * std::max({std::abs(o[0]), std::abs(o[1]), std::abs(o[2])}) * std::abs(sz);
     for (int a = 0; a < 3; ++a) {
         neg[a] = std::signbit(d[a]) ? 1 : 0;
         rcpNear[a] = ray.dRcp[a] * (1.0f - 0x1p-20f);
@@ -482,12 +483,12 @@ bool leafIntersect(Intersector kind, const TriangleRay &ray, const float *rows, 
     const uint32_t nc = (n + 15) / 16;
     for (uint32_t g = 0; 16 * g < nc; ++g) {
         float tn[16];
-        unsigned mask = chunkEntries<L>(ray, rows, n, g, best.t, tn);
+        unsigned mask = chunkEntries<L>(ray, rows, n, g, ray.cullLimit(best.t), tn);
         while (mask) {
             int k = __builtin_ctz(mask);
             for (unsigned b = mask & (mask - 1); b; b &= b - 1)
                 if (tn[__builtin_ctz(b)] < tn[k]) k = __builtin_ctz(b);
-            if (tn[k] > best.t) break;
+            if (tn[k] > ray.cullLimit(best.t)) break;
             mask &= ~(1u << k);
             found |= chunkIntersect<L>(kind, ray, rows, n, 16 * g + uint32_t(k), best);
         }

@@ -39,8 +39,18 @@ struct TriangleRay {
     // Chunk boxes: conservative slab test (entry rounded down, exit up).
     float rcpNear[3], rcpFar[3];
     int neg[3];
+    /// 2^-18 of |o|_inf / |d|_inf: with 2^-18 |t|, twice the float t error the kernels accept
+    /// before they recompute t in double (needsExactT).
+    float cullAbs;
 
     explicit TriangleRay(const Ray3f &ray);
+
+    /// \brief Boxes entered beyond this are culled while \p best is the closest hit so far. A
+    /// triangle's float t may lie below its exact t by up to the kernels' tolerance, so a box
+    /// entered just beyond best may still hold a triangle whose float t is below best; culling
+    /// only past the tolerance makes the answer independent of the order in which an
+    /// accelerator meets the triangles (octree and brute force agree bit for bit).
+    float cullLimit(float best) const { return best + (0x1p-18f * std::abs(best) + cullAbs); }
 };
 
 /// \brief Triangles of all meshes, copied in the order the accelerator's leaves visit them.
