@@ -115,16 +115,11 @@ double exactPlaneT(const std::array<Point3f, 3> &p, const Ray3f &ray, double &si
 
 bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; }
 
-// The shapes behind the faults, at random: one leaf of huge quads (axis-aligned and tilted),
-// slivers (1:100 to 1:10^4) and ordinary triangles, hit by rays from origins near the world
-// origin aimed at random points of them, and by rays leaving the ground from just above it. Every hit a kernel reports,
-// at every lane width (bit-identical to one lane), whose exact crossing lies inside the
-// triangle (not within 1e-6 of an edge: there the decision tests rule), lies within the
-// oracle's eps of the exact plane: |t - t*| sin(angle) |d| <= 2^-17 max(|o|_inf, t |d|), which
-// covers a spawned ray leaving the ground and finding it again (t* < 0).
-TEST(KernelPrecision, HitPointsLieOnTheExactPlaneAtEveryWidth) {
-    pcg32 rng(20261122);
-    auto uniform = [&](float a, float b) { return a + (b - a) * float(rng() >> 8) * 0x1p-24f; };
+/// Sixteen triangles where float t goes wrong: two halves of a 2000-unit ground quad in y = 0,
+/// two huge tilted triangles, eight slivers (long axis ~1, width 1e-2 .. 1e-4) and four ordinary
+/// triangles anywhere in [-8, 8]^3, drawn from \p uniform.
+template <typename Uniform>
+std::vector<std::array<Point3f, 3>> hardTriangles(Uniform &uniform) {
     std::vector<std::array<Point3f, 3>> tris = {
         {Point3f(-1000, 0, -1000), Point3f(-1000, 0, 1000), Point3f(1000, 0, 1000)},
         {Point3f(-1000, 0, -1000), Point3f(1000, 0, 1000), Point3f(1000, 0, -1000)},
@@ -142,6 +137,20 @@ TEST(KernelPrecision, HitPointsLieOnTheExactPlaneAtEveryWidth) {
         tris.push_back({Point3f(c), Point3f(c + Vector3f(uniform(-2, 2), uniform(-2, 2), uniform(-2, 2))),
                         Point3f(c + Vector3f(uniform(-2, 2), uniform(-2, 2), uniform(-2, 2)))});
     }
+    return tris;
+}
+
+// The shapes behind the faults, at random: one leaf of huge quads (axis-aligned and tilted),
+// slivers (1:100 to 1:10^4) and ordinary triangles, hit by rays from origins near the world
+// origin aimed at random points of them, and by rays leaving the ground from just above it. Every hit a kernel reports,
+// at every lane width (bit-identical to one lane), whose exact crossing lies inside the
+// triangle (not within 1e-6 of an edge: there the decision tests rule), lies within the
+// oracle's eps of the exact plane: |t - t*| sin(angle) |d| <= 2^-17 max(|o|_inf, t |d|), which
+// covers a spawned ray leaving the ground and finding it again (t* < 0).
+TEST(KernelPrecision, HitPointsLieOnTheExactPlaneAtEveryWidth) {
+    pcg32 rng(20261122);
+    auto uniform = [&](float a, float b) { return a + (b - a) * float(rng() >> 8) * 0x1p-24f; };
+    std::vector<std::array<Point3f, 3>> tris = hardTriangles(uniform);
     std::vector<uint32_t> ids(16);
     for (uint32_t i = 0; i < 16; ++i) ids[i] = i;
     for (Intersector kind : {Intersector::Watertight, Intersector::MT}) {
@@ -216,23 +225,7 @@ long double crossingMinBary(const std::array<Point3f, 3> &p, const Ray3f &ray) {
 TEST(KernelPrecision, InsideTestIsSkippedOnlyWhereTheCrossingIsInside) {
     pcg32 rng(20261123);
     auto uniform = [&](float a, float b) { return a + (b - a) * float(rng() >> 8) * 0x1p-24f; };
-    std::vector<std::array<Point3f, 3>> tris = {
-        {Point3f(-1000, 0, -1000), Point3f(-1000, 0, 1000), Point3f(1000, 0, 1000)},
-        {Point3f(-1000, 0, -1000), Point3f(1000, 0, 1000), Point3f(1000, 0, -1000)},
-        {Point3f(-1300, -400, -900), Point3f(1100, 250, -1000), Point3f(100, -30, 1200)},
-        {Point3f(-900, 700, 1000), Point3f(1000, -650, 1100), Point3f(50, 20, -1400)},
-    };
-    while (tris.size() < 12) {  // slivers, as in HitPointsLieOnTheExactPlaneAtEveryWidth
-        Vector3f c(uniform(-8, 8), uniform(-8, 8), uniform(-8, 8)), a(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)),
-            b(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-        float w = std::pow(10.0f, uniform(-4, -2));
-        tris.push_back({Point3f(c), Point3f(c + a), Point3f(c + a + w * b)});
-    }
-    while (tris.size() < 16) {
-        Vector3f c(uniform(-8, 8), uniform(-8, 8), uniform(-8, 8));
-        tris.push_back({Point3f(c), Point3f(c + Vector3f(uniform(-2, 2), uniform(-2, 2), uniform(-2, 2))),
-                        Point3f(c + Vector3f(uniform(-2, 2), uniform(-2, 2), uniform(-2, 2)))});
-    }
+    std::vector<std::array<Point3f, 3>> tris = hardTriangles(uniform);
     std::vector<uint32_t> ids(16);
     for (uint32_t i = 0; i < 16; ++i) ids[i] = i;
     for (Intersector kind : {Intersector::Watertight, Intersector::MT}) {
