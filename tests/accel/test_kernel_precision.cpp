@@ -140,6 +140,16 @@ std::vector<std::array<Point3f, 3>> hardTriangles(Uniform &uniform) {
     return tris;
 }
 
+/// One leaf of \p tris (at most 16) for intersector \p kind.
+TriangleStore leafOf(Intersector kind, const std::vector<std::array<Point3f, 3>> &tris) {
+    std::vector<uint32_t> ids(tris.size());
+    for (uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
+    TriangleStore store;
+    store.reset(kind, TriangleStore::leafWords(uint32_t(ids.size())));
+    store.setLeaf(0, ids.data(), uint32_t(ids.size()), tris);
+    return store;
+}
+
 // The shapes behind the faults, at random: one leaf of huge quads (axis-aligned and tilted),
 // slivers (1:100 to 1:10^4) and ordinary triangles, hit by rays from origins near the world
 // origin aimed at random points of them, and by rays leaving the ground from just above it. Every hit a kernel reports,
@@ -151,12 +161,8 @@ TEST(KernelPrecision, HitPointsLieOnTheExactPlaneAtEveryWidth) {
     pcg32 rng(20261122);
     auto uniform = [&](float a, float b) { return a + (b - a) * float(rng() >> 8) * 0x1p-24f; };
     std::vector<std::array<Point3f, 3>> tris = hardTriangles(uniform);
-    std::vector<uint32_t> ids(16);
-    for (uint32_t i = 0; i < 16; ++i) ids[i] = i;
     for (Intersector kind : {Intersector::Watertight, Intersector::MT}) {
-        TriangleStore store;
-        store.reset(kind, TriangleStore::leafWords(16));
-        store.setLeaf(0, ids.data(), 16, tris);
+        const TriangleStore store = leafOf(kind, tris);
         size_t hits[3] = {0, 0, 0}, bad = 0, differ = 0;
         for (int k = 0; k < 40000; ++k) {
             Point3f o(uniform(-10, 10), uniform(-10, 10), uniform(-10, 10));
@@ -226,12 +232,8 @@ TEST(KernelPrecision, InsideTestIsSkippedOnlyWhereTheCrossingIsInside) {
     pcg32 rng(20261123);
     auto uniform = [&](float a, float b) { return a + (b - a) * float(rng() >> 8) * 0x1p-24f; };
     std::vector<std::array<Point3f, 3>> tris = hardTriangles(uniform);
-    std::vector<uint32_t> ids(16);
-    for (uint32_t i = 0; i < 16; ++i) ids[i] = i;
     for (Intersector kind : {Intersector::Watertight, Intersector::MT}) {
-        TriangleStore store;
-        store.reset(kind, TriangleStore::leafWords(16));
-        store.setLeaf(0, ids.data(), 16, tris);
+        const TriangleStore store = leafOf(kind, tris);
         size_t known = 0, wrong = 0, outsideHits = 0;
         for (int k = 0; k < 60000; ++k) {
             Point3f o(uniform(-10, 10), uniform(-10, 10), uniform(-10, 10));
