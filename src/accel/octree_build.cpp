@@ -114,6 +114,42 @@ inline Float4 load4(const Point3f &p) { return Float4{p.x(), p.y(), p.z(), 0.0f}
 inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
 inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
 
+/// Classifier::mask111's table for the classic layout under \p pattern (one bisection per
+/// axis, in any order) and the plane rule \p oneSide: bits 0-2 of an index give the first slab
+/// per axis, bits 3-5 the last; the entry is the mask of the cells in those slabs. It depends
+/// only on which bit of a slot each axis sets, not on the cell, so it is made once per order
+/// (filling it for every node was 5 % of the build's instructions).
+const uint8_t *tableFor111(const OctreeNode::Pattern &pattern, bool oneSide) {
+    static const auto tables = [] {
+        std::array<std::array<uint8_t, 64>, 128> t{};
+        for (uint32_t code = 0; code < 64; ++code) {
+            const OctreeNode::Pattern p = OctreeNode::Pattern::fromCode(code);
+            int level[3] = {-1, -1, -1};  // the level that bisects each axis
+            for (int l = 0; l < 3; ++l)
+                if (p.axis[l] < 3) level[p.axis[l]] = l;
+            if (level[0] < 0 || level[1] < 0 || level[2] < 0) continue;
+            for (int side = 0; side < 2; ++side)
+                for (unsigned bits = 0; bits < 64; ++bits) {
+                    unsigned m = 0xFFu;
+                    for (int a = 0; a < 3; ++a) {
+                        unsigned first = (bits >> a) & 1u, last = (bits >> (3 + a)) & 1u;
+                        if (side) last = last > first ? last : first;
+                        // The cells whose slab along a (their bit at level[a]) is in [first, last].
+                        unsigned cells = 0;
+                        for (int c = 0; c < 8; ++c) {
+                            unsigned slab = (unsigned(c) >> (2 - level[a])) & 1u;
+                            if (slab >= first && slab <= last) cells |= 1u << c;
+                        }
+                        m &= cells;
+                    }
+                    t[2 * code + side][bits] = uint8_t(m);
+                }
+        }
+        return t;
+    }();
+    return tables[2 * pattern.code() + (oneSide ? 1 : 0)].data();
+}
+
 /// The child cells a bounding box touches (closed: touching a plane counts), by a table per
 /// axis: along each axis the eight cells form up to eight slabs, a box covers a run of them,
 /// and range[a][first][last] is the mask of the cells in that run.
@@ -127,7 +163,7 @@ struct Classifier {
     /// in one vector, and the mask for each outcome of the six comparisons (bits 0-2: first
     /// slab per axis, bits 3-5: last slab per axis).
     Float4 planes111 = {};
-    uint8_t table111[64] = {};
+    const uint8_t *table111 = nullptr;
 
     /// Closed cells (false: a box touching a plane goes to both sides, as the `count` and
     /// `seed` rules do) or one side (true, `sah`): a box that only touches a plane from one
@@ -165,15 +201,7 @@ struct Classifier {
         (void)cell;
         if (planes[0] == 1 && planes[1] == 1 && planes[2] == 1) {
             planes111 = Float4{plane[0][0], plane[1][0], plane[2][0], Infinity};
-            for (unsigned bits = 0; bits < 64; ++bits) {
-                unsigned m = 0xFFu;
-                for (int a = 0; a < 3; ++a) {
-                    unsigned first = (bits >> a) & 1u, last = (bits >> (3 + a)) & 1u;
-                    if (oneSide) last = last > first ? last : first;
-                    m &= range[a][first][last];
-                }
-                table111[bits] = uint8_t(m);
-            }
+            table111 = tableFor111(pattern, oneSide);
         }
         // The plane of bisection l under prefix q is the lower side of the first cell above it
         // (cellOf's arithmetic: the same float).
