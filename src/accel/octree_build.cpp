@@ -19,8 +19,8 @@ using Rule = OctreeAccel::BuildRule;
 /// Subtrees with more references than this are built as parallel tasks.
 constexpr size_t kParallelRefs = 4096;
 
-/// How many references ahead the classification prefetches a triangle's corners.
-constexpr size_t kPrefetch = 16;
+/// The classification's block of references (see split()).
+constexpr size_t kBlock = 64;
 
 /// The whole tree holds at most this many references per triangle (see split()): `count` and
 /// `seed` (which copy a triangle into every cell it touches) and `sah` (which sends triangles
@@ -448,6 +448,27 @@ struct Gathered {
             hi[c] = g.hi[c] > hi[c] ? g.hi[c] : hi[c];
         }
     }
+    /// The sums of two disjoint sets of references, each summed in order (\p a, \p b), as
+    /// one pass over their union in order gives them: the smaller (larger) bound, either
+    /// where they are the same float. False where that pass's bound depends on which came
+    /// first, a zero of each sign (equal, different bits): then the caller sums in one pass.
+    static bool combine(const Gathered &a, const Gathered &b, Gathered &out) {
+        const Int4 lanes = {-1, -1, -1, 0};  // the fourth lane is never used
+        Int4 ambiguous = {};
+        for (int c = 0; c < 8; ++c) {
+            Int4 alo, blo, ahi, bhi;
+            std::memcpy(&alo, &a.lo[c], sizeof alo);
+            std::memcpy(&blo, &b.lo[c], sizeof blo);
+            std::memcpy(&ahi, &a.hi[c], sizeof ahi);
+            std::memcpy(&bhi, &b.hi[c], sizeof bhi);
+            ambiguous |= ((a.lo[c] == b.lo[c]) & (alo != blo)) | ((a.hi[c] == b.hi[c]) & (ahi != bhi));
+            out.counts[c] = a.counts[c] + b.counts[c];
+            out.lo[c] = b.lo[c] < a.lo[c] ? b.lo[c] : a.lo[c];
+            out.hi[c] = b.hi[c] > a.hi[c] ? b.hi[c] : a.hi[c];
+        }
+        ambiguous &= lanes;
+        return !(ambiguous[0] | ambiguous[1] | ambiguous[2]);
+    }
     BoundingBox3f box(int c) const {
         return BoundingBox3f(Point3f(lo[c][0], lo[c][1], lo[c][2]), Point3f(hi[c][0], hi[c][1], hi[c][2]));
     }
@@ -473,6 +494,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     BoundingBox3f cells[8];
     std::unique_ptr<uint8_t[]> masks(new uint8_t[n]);
     std::optional<Classifier> classifier;
+    std::vector<uint32_t> straddlers;  // the references that go to several children, in order
 
     // Which child cells a triangle touches: its bounding box against the cells (see
     // Classifier::oneSide for a box on a plane), refined by the SAT only for straddling
@@ -505,6 +527,17 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         const Clips clips(box, cells);
         for (size_t i = 0; i < n; ++i) g.add(ids[i], masks[i], clips);
         setGathered(g);
+    };
+    // The sums of the references that go to one child (or none) are kept apart from those of
+    // the straddlers: when some straddlers are kept or go down loose, only those are summed
+    // again (Gathered::combine; most of a node's references go to one child).
+    Gathered single;
+    auto regather = [&] {
+        Gathered multi, all;
+        const Clips clips(box, cells);
+        for (const uint32_t i : straddlers) multi.add(ids[i], masks[i], clips);
+        if (Gathered::combine(single, multi, all)) setGathered(all);
+        else gather();
     };
     // `sah`: when every triangle lies in one child, the cell shrinks to it (below). Where the
     // triangles' own bounds (and the loose ones' centres) show that at once, the pass over
@@ -571,26 +604,64 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         // in parallel for large nodes; the blocks' sums are exact whatever their order).
         withMask(*classifier, [&](auto maskOf) {
             const Clips clips(box, cells);
-            auto run = [&](size_t begin, size_t end, Gathered &g) {
-                for (size_t i = begin; i < end; ++i) {
-                    // The corners of a triangle a few references ahead, in case the SAT needs
-                    // them: its cache misses were most of the classification's time.
-                    if (in.exact && i + kPrefetch < end)
-                        __builtin_prefetch(&in.vertices[ids[i + kPrefetch].id & ~kLooseBit]);
-                    g.add(ids[i], classifyOne(i, maskOf), clips);
+            // In blocks of kBlock: the bounding-box masks first, prefetching the corners of the
+            // triangles that straddle (the SAT's cache misses were most of the classification's
+            // time; the other triangles' corners are not needed), then the SAT for those, then
+            // the sums in order. \p multi receives the references that go to several children.
+            auto run = [&](size_t begin, size_t end, Gathered &g, Gathered &gm, std::vector<uint32_t> &multi) {
+                uint32_t straddle[kBlock];
+                for (size_t b = begin; b < end; b += kBlock) {
+                    const size_t e = std::min(end, b + kBlock);
+                    size_t k = 0;
+                    for (size_t i = b; i < e; ++i) {
+                        const Ref &r = ids[i];
+                        unsigned mask;
+                        if (__builtin_expect(r.id & kLooseBit, 0)) {
+                            mask = 1u << classifier->slotOfCentre(r.lo, r.hi);
+                        } else {
+                            mask = maskOf(r);
+                            if ((mask & (mask - 1)) && in.exact) {
+                                __builtin_prefetch(&in.vertices[r.id]);
+                                straddle[k++] = uint32_t(i);
+                            }
+                        }
+                        masks[i] = uint8_t(mask);
+                    }
+                    for (size_t j = 0; j < k; ++j) {
+                        const Ref &r = ids[straddle[j]];
+                        masks[straddle[j]] = uint8_t(refine(in.vertices[r.id], r.lo, r.hi, cell, cells, masks[straddle[j]]));
+                    }
+                    for (size_t i = b; i < e; ++i) {
+                        const unsigned mask = masks[i];
+                        if (mask & (mask - 1)) {
+                            gm.add(ids[i], mask, clips);
+                            multi.push_back(uint32_t(i));
+                        } else {
+                            g.add(ids[i], mask, clips);
+                        }
+                    }
                 }
             };
-            Gathered all;
+            Gathered multi, all;
+            single = Gathered();
+            straddlers.clear();
             if (n > 8 * kParallelRefs) {
-                std::vector<Gathered> parts((n + 4095) / 4096);
-                tbb::parallel_for(size_t(0), parts.size(), [&](size_t b) {
-                    run(4096 * b, std::min(n, 4096 * b + 4096), parts[b]);
+                const size_t blocks = (n + 4095) / 4096;
+                std::vector<Gathered> parts(2 * blocks);
+                std::vector<std::vector<uint32_t>> multis(blocks);
+                tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+                    run(4096 * b, std::min(n, 4096 * b + 4096), parts[2 * b], parts[2 * b + 1], multis[b]);
                 });
-                for (const Gathered &g : parts) all.merge(g);
+                for (size_t b = 0; b < blocks; ++b) {
+                    single.merge(parts[2 * b]);
+                    multi.merge(parts[2 * b + 1]);
+                    straddlers.insert(straddlers.end(), multis[b].begin(), multis[b].end());
+                }
             } else {
-                run(0, n, all);
+                run(0, n, single, multi, straddlers);
             }
-            setGathered(all);
+            if (Gathered::combine(single, multi, all)) setGathered(all);
+            else gather();
         });
         // `sah`: every triangle in one and the same child: the split would separate nothing,
         // so the cell shrinks to that child without a node (empty space costs no level of the
@@ -646,9 +717,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             size_t i;
         };
         std::vector<Candidate> candidates;
-        for (size_t i = 0; i < n; ++i) {
+        for (const uint32_t i : straddlers) {
             unsigned m = masks[i];
-            if (!(m & (m - 1))) continue;
             double copies = 0.0;
             for (; m; m &= m - 1) copies += p[__builtin_ctz(m)];
             // (A dense array: the corners of a random triangle cost three cache lines.)
@@ -686,7 +756,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                 keptBox.expandBy(BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]), Point3f(r.hi[0], r.hi[1], r.hi[2])));
                 masks[candidates[k].i] = 0;
             }
-            gather();
+            regather();
         }
     }
 
@@ -698,12 +768,12 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     if (double(sumDown + kept.size()) > budget) {
         if (!sah) return nullptr;
         // Over budget: the straddling triangles go down loose.
-        for (size_t i = 0; i < n; ++i)
-            if (masks[i] & (masks[i] - 1)) {
+        for (const uint32_t i : straddlers)
+            if (masks[i] & (masks[i] - 1)) {  // (not kept)
                 ids[i].id |= kLooseBit;
                 classify(i);
             }
-        gather();
+        regather();
         sumDown = down;
     }
     const size_t sum = sumDown + kept.size();
