@@ -282,8 +282,15 @@ struct Classifier {
             first = planes111 < l;
             last = planes111 <= h;
         }
+#ifdef __SSE__
+        // The comparisons' sign bits in one instruction each (movmskps).
+        const unsigned f = unsigned(__builtin_ia32_movmskps(Float4(first))) & 7u;
+        const unsigned t = unsigned(__builtin_ia32_movmskps(Float4(last))) & 7u;
+        return table111[f | t << 3];
+#else
         const Int4 bits = (first & Int4{1, 2, 4, 0}) | (last & Int4{8, 16, 32, 0});
         return table111[bits[0] | bits[1] | bits[2]];
+#endif
     }
     /// The same for any layout of planes.
     unsigned mask(const float lo[3], const float hi[3]) const {
@@ -440,6 +447,14 @@ struct Gathered {
             hi[c] = max4(min4(rhi, clips.hi[k]), hi[c]);
         }
     }
+    /// add() for a reference that goes to child \p c alone.
+    void addOne(const Ref &r, int c, const Clips &clips) {
+        const Float4 rlo = load4(r.lo), rhi = load4(r.hi);
+        const int k = (r.id & kLooseBit) ? 8 : c;
+        ++counts[c];
+        lo[c] = min4(max4(rlo, clips.lo[k]), lo[c]);
+        hi[c] = max4(min4(rhi, clips.hi[k]), hi[c]);
+    }
     /// Add the sums of \p g, a later run (ties keep the earlier bound, as one pass would).
     void merge(const Gathered &g) {
         for (int c = 0; c < 8; ++c) {
@@ -494,7 +509,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     BoundingBox3f cells[8];
     std::unique_ptr<uint8_t[]> masks(new uint8_t[n]);
     std::optional<Classifier> classifier;
-    std::vector<uint32_t> straddlers;  // the references that go to several children, in order
+    std::vector<uint32_t> straddlers;  // the references whose bounding boxes straddle, in order
 
     // Which child cells a triangle touches: its bounding box against the cells (see
     // Classifier::oneSide for a box on a plane), refined by the SAT only for straddling
@@ -528,7 +543,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         for (size_t i = 0; i < n; ++i) g.add(ids[i], masks[i], clips);
         setGathered(g);
     };
-    // The sums of the references that go to one child (or none) are kept apart from those of
+    // The sums of the references whose boxes lie in one child are kept apart from those of
     // the straddlers: when some straddlers are kept or go down loose, only those are summed
     // again (Gathered::combine; most of a node's references go to one child).
     Gathered single;
@@ -604,10 +619,11 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         // in parallel for large nodes; the blocks' sums are exact whatever their order).
         withMask(*classifier, [&](auto maskOf) {
             const Clips clips(box, cells);
-            // In blocks of kBlock: the bounding-box masks first, prefetching the corners of the
-            // triangles that straddle (the SAT's cache misses were most of the classification's
-            // time; the other triangles' corners are not needed), then the SAT for those, then
-            // the sums in order. \p multi receives the references that go to several children.
+            // In blocks of kBlock: the bounding-box masks, summing the references that go to
+            // one child at once and prefetching the corners of those that straddle (the SAT's
+            // cache misses were most of the classification's time; the other triangles'
+            // corners are not needed), then the SAT for those and their sums. \p g sums the
+            // first kind, \p gm the second, whose indices go to \p multi.
             auto run = [&](size_t begin, size_t end, Gathered &g, Gathered &gm, std::vector<uint32_t> &multi) {
                 uint32_t straddle[kBlock];
                 for (size_t b = begin; b < end; b += kBlock) {
@@ -620,25 +636,28 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                             mask = 1u << classifier->slotOfCentre(r.lo, r.hi);
                         } else {
                             mask = maskOf(r);
-                            if ((mask & (mask - 1)) && in.exact) {
-                                __builtin_prefetch(&in.vertices[r.id]);
-                                straddle[k++] = uint32_t(i);
+                            if (mask & (mask - 1)) {
+                                masks[i] = uint8_t(mask);
+                                if (in.exact) {
+                                    __builtin_prefetch(&in.vertices[r.id]);
+                                    straddle[k++] = uint32_t(i);
+                                } else {
+                                    gm.add(r, mask, clips);
+                                    multi.push_back(uint32_t(i));
+                                }
+                                continue;
                             }
                         }
                         masks[i] = uint8_t(mask);
+                        g.addOne(r, __builtin_ctz(mask), clips);
                     }
                     for (size_t j = 0; j < k; ++j) {
-                        const Ref &r = ids[straddle[j]];
-                        masks[straddle[j]] = uint8_t(refine(in.vertices[r.id], r.lo, r.hi, cell, cells, masks[straddle[j]]));
-                    }
-                    for (size_t i = b; i < e; ++i) {
-                        const unsigned mask = masks[i];
-                        if (mask & (mask - 1)) {
-                            gm.add(ids[i], mask, clips);
-                            multi.push_back(uint32_t(i));
-                        } else {
-                            g.add(ids[i], mask, clips);
-                        }
+                        const uint32_t i = straddle[j];
+                        const Ref &r = ids[i];
+                        const unsigned mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, masks[i]);
+                        masks[i] = uint8_t(mask);
+                        gm.add(r, mask, clips);
+                        multi.push_back(i);
                     }
                 }
             };
@@ -719,6 +738,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         std::vector<Candidate> candidates;
         for (const uint32_t i : straddlers) {
             unsigned m = masks[i];
+            if (!(m & (m - 1))) continue;
             double copies = 0.0;
             for (; m; m &= m - 1) copies += p[__builtin_ctz(m)];
             // (A dense array: the corners of a random triangle cost three cache lines.)
