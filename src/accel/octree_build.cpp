@@ -156,6 +156,7 @@ const uint8_t *tableFor111(const OctreeNode::Pattern &pattern, bool oneSide) {
 struct Classifier {
     int planes[3] = {};      ///< interior slab boundaries per axis
     float plane[3][7] = {};  ///< their positions, increasing
+    Float4 planes4[3][2];    ///< the same, four to a vector, padded with +inf
     uint8_t range[3][8][8] = {};
     uint8_t axis[3] = {};    ///< the pattern's bisection axes, level by level
     float mid[7] = {};       ///< bisection planes: level l, cells above prefix q at mid[2^l - 1 + q]
@@ -199,6 +200,8 @@ struct Classifier {
             }
         }
         (void)cell;
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < 8; ++k) planes4[a][k / 4][k % 4] = k < planes[a] && k < 7 ? plane[a][k] : Infinity;
         if (planes[0] == 1 && planes[1] == 1 && planes[2] == 1) {
             planes111 = Float4{plane[0][0], plane[1][0], plane[2][0], Infinity};
             table111 = tableFor111(pattern, oneSide);
@@ -248,6 +251,28 @@ struct Classifier {
     template <int P, bool OneSide> unsigned axisMask(int a, float lo, float hi) const {
         if constexpr (P == 0) {
             return 0xFFu;
+#ifdef __SSE__
+        } else if constexpr (P == 3 || P == 7) {
+            // The planes four at a time (padded with +inf, never below a finite bound): a
+            // comparison per four planes and the count of its true lanes.
+            const Float4 l = Float4{} + lo, h = Float4{} + hi;
+            unsigned first = 0, last = 0;
+            for (int q = 0; q < (P + 1) / 4; ++q) {
+                const Float4 pl = planes4[a][q];
+                Int4 f, t;
+                if constexpr (OneSide) {
+                    f = pl <= l;
+                    t = pl < h;
+                } else {
+                    f = pl < l;
+                    t = pl <= h;
+                }
+                first += unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(f)))));
+                last += unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(t)))));
+            }
+            if constexpr (OneSide) last = last > first ? last : first;
+            return range[a][first][last];
+#endif
         } else {
             unsigned first = 0, last = 0;
             for (int k = 0; k < P; ++k) {
@@ -401,13 +426,6 @@ __attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const
     return kept ? kept : mask;  // never lose a triangle to rounding
 }
 
-/// The ids of a list that becomes a leaf, without loose marks.
-std::vector<uint32_t> finish(const Ref *list, size_t n) {
-    std::vector<uint32_t> ids(n);
-    for (size_t i = 0; i < n; ++i) ids[i] = list[i].id & ~kLooseBit;
-    return ids;
-}
-
 /// The boxes a node's triangles are clipped to: its children's cells, and for loose triangles
 /// the node's box.
 struct Clips {
@@ -489,6 +507,14 @@ struct Gathered {
     }
 };
 
+/// A list of reference indices in a buffer owned elsewhere.
+struct Indices {
+    uint32_t *data = nullptr;
+    size_t count = 0;
+    const uint32_t *begin() const { return data; }
+    const uint32_t *end() const { return data + count; }
+};
+
 /// Split \p refs (the triangles touching \p cell, whose clipped bounds are \p box; a node at
 /// \p depth) and recurse. Returns null when the node should stay a leaf.
 ///
@@ -507,9 +533,12 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     int depth = depthIn;
     OctreeNode::Pattern pattern{{0, 1, 2}};
     BoundingBox3f cells[8];
-    std::unique_ptr<uint8_t[]> masks(new uint8_t[n]);
+    // One block for the node's scratch lists: the indices of the straddlers (at most n) and
+    // each reference's mask.
+    std::unique_ptr<uint32_t[]> scratch(new uint32_t[n + (n + 3) / 4]);
+    uint8_t *masks = reinterpret_cast<uint8_t *>(scratch.get() + n);
     std::optional<Classifier> classifier;
-    std::vector<uint32_t> straddlers;  // the references whose bounding boxes straddle, in order
+    Indices straddlers{scratch.get(), 0};  // the references whose bounding boxes straddle, in order
 
     // Which child cells a triangle touches: its bounding box against the cells (see
     // Classifier::oneSide for a box on a plane), refined by the SAT only for straddling
@@ -624,7 +653,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             // cache misses were most of the classification's time; the other triangles'
             // corners are not needed), then the SAT for those and their sums. \p g sums the
             // first kind, \p gm the second, whose indices go to \p multi.
-            auto run = [&](size_t begin, size_t end, Gathered &g, Gathered &gm, std::vector<uint32_t> &multi) {
+            auto run = [&](size_t begin, size_t end, Gathered &g, Gathered &gm, Indices &multi) {
                 uint32_t straddle[kBlock];
                 for (size_t b = begin; b < end; b += kBlock) {
                     const size_t e = std::min(end, b + kBlock);
@@ -643,7 +672,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                                     straddle[k++] = uint32_t(i);
                                 } else {
                                     gm.add(r, mask, clips);
-                                    multi.push_back(uint32_t(i));
+                                    multi.data[multi.count++] = uint32_t(i);
                                 }
                                 continue;
                             }
@@ -657,24 +686,28 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                         const unsigned mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, masks[i]);
                         masks[i] = uint8_t(mask);
                         gm.add(r, mask, clips);
-                        multi.push_back(i);
+                        multi.data[multi.count++] = i;
                     }
                 }
             };
             Gathered multi, all;
             single = Gathered();
-            straddlers.clear();
+            straddlers.count = 0;
             if (n > 8 * kParallelRefs) {
+                // Block b lists its straddlers from index 4096 b on (it has at most 4096),
+                // then the lists close up in order.
                 const size_t blocks = (n + 4095) / 4096;
                 std::vector<Gathered> parts(2 * blocks);
-                std::vector<std::vector<uint32_t>> multis(blocks);
+                std::vector<Indices> multis(blocks);
                 tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+                    multis[b] = {straddlers.data + 4096 * b, 0};
                     run(4096 * b, std::min(n, 4096 * b + 4096), parts[2 * b], parts[2 * b + 1], multis[b]);
                 });
                 for (size_t b = 0; b < blocks; ++b) {
                     single.merge(parts[2 * b]);
                     multi.merge(parts[2 * b + 1]);
-                    straddlers.insert(straddlers.end(), multis[b].begin(), multis[b].end());
+                    std::memmove(straddlers.data + straddlers.count, multis[b].data, sizeof(uint32_t) * multis[b].count);
+                    straddlers.count += multis[b].count;
                 }
             } else {
                 run(0, n, single, multi, straddlers);
@@ -736,6 +769,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             size_t i;
         };
         std::vector<Candidate> candidates;
+        candidates.reserve(straddlers.count);
         for (const uint32_t i : straddlers) {
             unsigned m = masks[i];
             if (!(m & (m - 1))) continue;
@@ -829,7 +863,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         for (size_t i = 0; i < n; ++i)
             for (unsigned m = masks[i]; m; m &= m - 1) *out[__builtin_ctz(m)]++ = ids[i];
     }
-    masks.reset();
+    scratch.reset();
 
     // Depth of each child: one level below, or for the seed's rule one more level for every
     // earlier sibling (its build passes `++ctr` to the children in turn, empty ones included).
@@ -843,7 +877,6 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             std::unique_ptr<TempNode> sub = split(in, cells[c], node->box[c], list, size, node->childDepth[c], share);
             if (sub) node->inner[c] = std::move(sub);
         }
-        if (!node->inner[c]) node->refs[c] = finish(list, size);
     };
     if (n > kParallelRefs) {
         tbb::task_group group;
@@ -851,6 +884,21 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         group.wait();
     } else {
         for (int c = 0; c < 8; ++c) buildChild(c);
+    }
+    // The leaves' ids, without loose marks, in one block for all the node's leaves.
+    size_t leafRefs = 0;
+    for (int c = 0; c < 8; ++c)
+        if (!node->inner[c]) leafRefs += counts[c];
+    if (leafRefs) {
+        node->leafIds.reset(new uint32_t[leafRefs]);
+        uint32_t *out = node->leafIds.get();
+        for (int c = 0; c < 8; ++c) {
+            if (node->inner[c] || !counts[c]) continue;
+            const Ref *list = lists.get() + start[c];
+            for (size_t i = 0; i < counts[c]; ++i) out[i] = list[i].id & ~kLooseBit;
+            node->refs[c] = {out, counts[c]};
+            out += counts[c];
+        }
     }
     summarize(*node);
     return node;

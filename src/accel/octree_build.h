@@ -21,12 +21,22 @@ struct Input {
     bool exact;  ///< separating-axis test for triangles whose box straddles a midplane
 };
 
+/// \brief A leaf's triangle ids (global), in storage its node owns.
+struct LeafIds {
+    const uint32_t *ids = nullptr;
+    size_t count = 0;
+    const uint32_t *data() const { return ids; }
+    size_t size() const { return count; }
+    bool empty() const { return count == 0; }
+};
+
 /// \brief An inner node of the temporary tree. Child slot c (see OctreeNode::Pattern) is an
 /// inner node (inner[c]), a leaf (refs[c] non-empty) or empty.
 struct TempNode {
     BoundingBox3f box[8];  ///< tight child boxes
     std::unique_ptr<TempNode> inner[8];
-    std::vector<uint32_t> refs[8];
+    LeafIds refs[8];
+    std::unique_ptr<uint32_t[]> leafIds;  ///< the ids of all its leaves, one block (refs[c] point into it)
     std::vector<uint32_t> kept;  ///< large triangles tested at this node
     BoundingBox3f keptBox;       ///< their bounds
     OctreeNode::Pattern pattern{{0, 1, 2}};

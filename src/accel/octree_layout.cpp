@@ -127,7 +127,9 @@ void OctreeAccel::buildImpl() {
         if (!all.empty()) root->box[0] = sceneBox;
         root->subtreeRefs = all.size();
         root->subtreeWords = all.empty() ? 0 : TriangleStore::leafWords(uint32_t(all.size()));
-        root->refs[0] = std::move(all);
+        root->leafIds.reset(new uint32_t[all.size()]);
+        std::copy(all.begin(), all.end(), root->leafIds.get());
+        root->refs[0] = {root->leafIds.get(), all.size()};
     }
     std::vector<uint32_t>().swap(all);
     std::vector<float>().swap(areas);
