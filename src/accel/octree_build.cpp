@@ -334,18 +334,7 @@ struct Classifier {
 };
 
 
-/// A reference is a global triangle id; the `sah` rule marks with this bit the triangles that
-/// went down loose (not copied; their bounds are no longer clipped to the cell).
-constexpr uint32_t kLooseBit = 0x80000000u;
 
-/// A triangle reference during the build: its id (with kLooseBit) and its bounds, carried
-/// along so that classifying a node's triangles reads one array in order instead of the
-/// bounds of scattered ids (the build's cache misses). Plain floats: lists of them are
-/// allocated without being initialised first.
-struct Ref {
-    float lo[3], hi[3];  ///< the triangle's own bounds (not clipped)
-    uint32_t id;
-};
 
 /// Classifier::mask for the layout of planes of \p k, as a type (see withMask()).
 template <int PX, int PY, int PZ, bool OneSide> struct MaskOf {
@@ -910,20 +899,11 @@ OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3
 
 BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c) { return cellOf(cell, p, c); }
 
-std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
-                                    const std::vector<uint32_t> &refs) {
-    if (refs.size() < in.leafSize || in.maxDepth <= 0) return nullptr;
+std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box, Ref *refs,
+                                    size_t n) {
+    if (n < in.leafSize || in.maxDepth <= 0) return nullptr;
     double perTriangle = in.rule == Rule::Sah ? kSahRefBudget : kRefBudget;
-    // Each triangle's bounds, as buildImpl() computes them for the scene's box (no array of
-    // them: that would be the build's largest allocation after the corners).
-    std::unique_ptr<Ref[]> ids(new Ref[refs.size()]);
-    for (size_t i = 0; i < refs.size(); ++i) {
-        const auto &v = in.vertices[refs[i]];
-        BoundingBox3f b;
-        for (int k = 0; k < 3; ++k) b.expandBy(v[k]);
-        ids[i] = {{b.min.x(), b.min.y(), b.min.z()}, {b.max.x(), b.max.y(), b.max.z()}, refs[i]};
-    }
-    return split(in, cell, box, ids.get(), refs.size(), 0, perTriangle * double(refs.size()));
+    return split(in, cell, box, refs, n, 0, perTriangle * double(n));
 }
 
 } // namespace nori::octree_build

@@ -21,6 +21,19 @@ struct Input {
     bool exact;  ///< separating-axis test for triangles whose box straddles a midplane
 };
 
+/// A reference is a global triangle id; the `sah` rule marks with this bit the triangles that
+/// went down loose (not copied; their bounds are no longer clipped to the cell).
+constexpr uint32_t kLooseBit = 0x80000000u;
+
+/// \brief A triangle reference during the build: its id (with a mark for the `sah` rule's
+/// loose triangles) and its bounds, carried along so that classifying a node's triangles reads
+/// one array in order instead of the bounds of scattered ids (the build's cache misses). Plain
+/// floats: arrays of them are allocated without being initialised first.
+struct Ref {
+    float lo[3], hi[3];  ///< the triangle's own bounds (not clipped)
+    uint32_t id;
+};
+
 /// \brief A leaf's triangle ids (global), in storage its node owns.
 struct LeafIds {
     const uint32_t *ids = nullptr;
@@ -51,9 +64,10 @@ struct TempNode {
 OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3f &cell);
 BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c);
 
-/// \brief Subdivide \p cell (holding the triangles \p refs, whose bounds clipped to the cell are \p box),
-/// the root at depth 0. Returns null when the root is best left a single leaf.
-std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
-                                    const std::vector<uint32_t> &refs);
+/// \brief Subdivide \p cell (holding the \p n triangles \p refs, whose bounds clipped to the
+/// cell are \p box; the array is reordered and overwritten), the root at depth 0. Returns null
+/// when the root is best left a single leaf.
+std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box, Ref *refs,
+                                    size_t n);
 
 } // namespace nori::octree_build
