@@ -43,6 +43,12 @@ BenchRunner::BenchRunner(const BenchOptions &options, const OctreeCatalog &catal
         });
         if (!m_dump) throw std::runtime_error(options.dumpDisputed + ": cannot open for writing");
     }
+    if (!options.dumpAnswers.empty()) {
+        m_answers.reset(std::fopen(options.dumpAnswers.c_str(), "wb"), [](std::FILE *f) {
+            if (f) std::fclose(f);
+        });
+        if (!m_answers) throw std::runtime_error(options.dumpAnswers + ": cannot open for writing");
+    }
 }
 
 template <typename Tracer>
@@ -68,6 +74,14 @@ std::array<SetTiming, 3> BenchRunner::interleaved(const Tracer &tracer, const Em
         t.hasAccuracy = true;
         t.accuracy = Accuracy::compare(answers, set.reference, set.rays);
         referee(tracer, embree, set, embreeAnswers, t.accuracy);
+        if (m_answers && !m_dumpWho.empty()) {
+            // One record of nine floats per ray: o, d, mint, maxt, the answer (as RaySet::reference).
+            for (size_t r = 0; r < set.rays.size(); ++r) {
+                const Ray3f &ray = set.rays[r];
+                const float rec[9] = {ray.o.x(), ray.o.y(), ray.o.z(), ray.d.x(), ray.d.y(), ray.d.z(), ray.mint, ray.maxt, answers[r]};
+                std::fwrite(rec, sizeof(float), 9, m_answers.get());
+            }
+        }
         if (embreeSamples) {
             auto &dst = (*embreeSamples)[size_t(s)];
             dst.insert(dst.end(), embreeRuns.begin(), embreeRuns.end());

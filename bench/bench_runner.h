@@ -54,7 +54,7 @@ private:
     mutable const EmbreeOracle *m_robust = nullptr;
     // --dump-disputed: the file, the octree run being refereed ("" for Embree's own runs) and
     // the input's meshes (global triangle ids in their order).
-    std::shared_ptr<std::FILE> m_dump;
+    std::shared_ptr<std::FILE> m_dump, m_answers;
     mutable std::string m_dumpWho;
     mutable std::vector<const Mesh *> m_dumpMeshes;
 
