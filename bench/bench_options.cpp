@@ -98,8 +98,8 @@ void OptionParser::declare(CliApp &cli, BenchOptions &o) {
     app.add_option("--repeats", o.repeats, "timed runs per contender and ray set, median reported (default 3)")
         ->check(integerIn(1, 1000))->option_text("R")->group(MeasureGroup);
     app.add_flag("--cpu-time", o.cpuTime,
-                 "time the ray sets by the thread's CPU time, not the wall clock (needs --threads 1): on a "
-                 "shared machine, time spent waiting for a core counts for neither side")
+                 "time the builds and the ray sets by the thread's CPU time, not the wall clock (needs --threads "
+                 "1): on a shared machine, time spent waiting for a core counts for neither side")
         ->group(MeasureGroup);
     app.add_flag("--quick", o.quick,
                  "tiny CI configuration (64x64x1 rays, 1 repeat, depths 6,10; a generated mesh when no --mesh is given)")

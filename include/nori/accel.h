@@ -87,6 +87,9 @@ public:
     const BoundingBox3f &bbox() const { return m_bbox; }
     const std::vector<const Mesh *> &meshes() const { return m_meshes; }
     double buildMilliseconds() const { return m_buildMs; }
+    /// \brief CPU time of the calling thread during the last build (nori-bench --cpu-time: a
+    /// figure a shared machine's other processes do not inflate, when the build is single-threaded).
+    double buildCpuMilliseconds() const { return m_buildCpuMs; }
 
     EClassType getClassType() const override { return EAccel; }
 
@@ -98,6 +101,7 @@ protected:
     std::vector<uint32_t> m_offsets{0};  ///< prefix sums of triangle counts
     BoundingBox3f m_bbox;
     double m_buildMs = 0.0;
+    double m_buildCpuMs = 0.0;
 };
 
 } // namespace nori

@@ -31,6 +31,8 @@ public:
     bool occluded(const Ray3f &ray) const;
 
     double buildMilliseconds() const { return m_buildMs; }
+    /// \brief The calling thread's CPU time during the build (with threads=1 Embree builds on it).
+    double buildCpuMilliseconds() const { return m_buildCpuMs; }
     /// \brief Bytes Embree holds after the build, from its device memory monitor.
     long long bytes() const { return m_bytesAfterBuild; }
 
@@ -39,6 +41,7 @@ private:
     RTCSceneTy *m_scene = nullptr;
     std::vector<uint32_t> m_offsets;  ///< first global triangle id of each geometry
     double m_buildMs = 0.0;
+    double m_buildCpuMs = 0.0;
     long long m_bytesAfterBuild = 0;
     long long m_bytes = 0;  ///< running total kept by the memory monitor callback
     static bool memoryMonitor(void *self, ssize_t bytes, bool post);
