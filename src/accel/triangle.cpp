@@ -201,7 +201,8 @@ inline float signedFloat(double x) {
 /// estimate exceeds its tolerance. A lane holding \p skipPrim (the closest hit so far, met again
 /// in another leaf) is no hit: its t is known already. The lanes of \p inside are known to cross
 /// the plane strictly inside the triangle (the kernel's barycentrics exceed their rounding
-/// error bound): they skip the inside test below, which they would pass.
+/// error bound, or the watertight kernel's exact edge volumes are all nonzero): they skip the
+/// inside test below, which they would pass.
 template <int L>
 [[gnu::noinline]] VFloat<L> exactPlaneT(VMask<L> redo, VMask<L> inside, const TriangleRay &r, const float *rows,
                                         uint32_t n, uint32_t i, VFloat<L> t, uint32_t skipPrim) {
@@ -232,7 +233,8 @@ template <int L>
             out[j] = signedFloat(te);
             continue;
         }
-        // The float edge test let the lane through (Woop et al.'s decision, kept). Where the
+        // The kernel's edge test let the lane through: mt's float test (kept), or the watertight
+        // kernel's exact one for a crossing on an edge (its other lanes skip this). Where the
         // exact crossing lies off the triangle (a barycentric coordinate below -2^-24, about
         // the rounding of this double computation on a sliver), i.e. for a ray within the
         // edge test's rounding of an edge at a grazing angle or on a needle whose plane is
@@ -349,6 +351,12 @@ template <int L>
     return {VFloat<L>::loadu(u), VFloat<L>::loadu(v), VFloat<L>::loadu(w)};
 }
 
+/// Lanes whose three edge functions have mixed signs (zero counts as either sign): a miss.
+template <int L>
+[[gnu::always_inline]] inline VMask<L> mixedSigns(VFloat<L> U, VFloat<L> V, VFloat<L> W) {
+    return ((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f));
+}
+
 /// Woop, Benthin & Wald 2013 (JCGT 2(1)) on rows p0, p1, p2: vertices relative to the origin,
 /// sheared so that the ray is the +z axis, then 2D edge functions; both windings hit.
 ///
@@ -366,8 +374,8 @@ template <int L>
 /// t = sum E_i z_i / sum E_i comes from the same sheared corners, whose rounding errors scale
 /// with their distance |p - o| from the ray origin, not with t: on a triangle much larger than the
 /// hit distance (a 2000-unit ground seen from 6 units) t is off by more than the distance to the
-/// plane, and a ray leaving the surface re-hits it. Those lanes, and the lanes decided exactly,
-/// get t from the plane equation in double (exactPlaneT).
+/// plane, and a ray leaving the surface re-hits it. Those lanes, and the lanes whose exact
+/// decision overturned the float one, get t from the plane equation in double (exactPlaneT).
 template <int L>
 [[gnu::always_inline]] inline Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt,
                                                  uint32_t skipPrim) {
@@ -400,11 +408,16 @@ template <int L>
     // Surely hit (crossing strictly inside): three signs surely equal. The rest: exact signs.
     const VMask<L> inside = ((U > bound) & (V > bound) & (W > bound)) | ((U < negBound) & (V < negBound) & (W < negBound));
     const VMask<L> unsure = valid & ~inside;
+    // The lanes whose exact decision differs from the float signs' (zero counting as either)
+    // take the exact volumes; the others keep their float edge functions, so t and u, v stay
+    // bit for bit where the decision does not change.
+    VMask<L> exactly{};
     if (any(unsure)) {
         const Edges<L> e = exactEdges(unsure, r, rows, n, i, Edges<L>{U, V, W});
-        U = e.U, V = e.V, W = e.W;
-        // Hit unless the exact signs are mixed (zero counts as either sign).
-        valid = m & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
+        const VMask<L> floatHit = ~mixedSigns(U, V, W), exactHit = ~mixedSigns(e.U, e.V, e.W);
+        exactly = unsure & ((floatHit & ~exactHit) | (exactHit & ~floatHit));
+        U = select(exactly, e.U, U), V = select(exactly, e.V, V), W = select(exactly, e.W, W);
+        valid = m & ~mixedSigns(U, V, W);
         if (!any(valid)) return {U, V, W, valid};
     }
     F det = U + V + W;
@@ -421,17 +434,17 @@ template <int L>
     // error off the plane of the same size: large on slivers and grazing rays. Beyond 2^-19 of
     // the problem's scale (needsExactT), i.e. on triangles much larger than their distance to
     // the origin and on slivers, t comes from the plane equation in double instead; so does t of
-    // every lane decided exactly (its U, V, W are the exact volumes, not the sheared corners').
+    // every lane the exact decision overturned (its U, V, W are exact volumes, not the corners').
     if (any(valid)) {
         const F zmax = max(max(abs(za), abs(zb)), abs(zc));
         const TScale sc(r);
         const F shape = M * M * M * abs(invDet);
         const F err = F(0x1p-22f) * ((M + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
-        const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt) | (valid & unsure);
+        const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt) | (valid & exactly);
         if (any(redo)) {
             // Lanes decided exactly with no zero volume cross strictly inside too; those with a
             // zero one cross on an edge, and exactPlaneT's inside test keeps them.
-            const VMask<L> strict = inside | (unsure & (U != 0.0f) & (V != 0.0f) & (W != 0.0f));
+            const VMask<L> strict = inside | (exactly & (U != 0.0f) & (V != 0.0f) & (W != 0.0f));
             t = exactPlaneT(redo, strict, r, rows, n, i, t, skipPrim);
             known = redo & strict;
         }
