@@ -4,6 +4,7 @@
 #include "lanes.h"
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 namespace nori {
 #ifdef NORI_OCTREE_COUNTERS
@@ -221,6 +222,29 @@ struct NodeRay {
 };
 using SimdRay = NodeRay<kNodeLanes>;
 
+/// The triangle kernels' per-ray setup (TriangleRay: the watertight shear, three divisions),
+/// made when the ray first reaches a triangle. In sparse scenes (a ground plane, a room, a
+/// city's streets) most shadow and diffuse rays leave the tree through empty cells and never
+/// need it; the cull limit needs only cullAbs, which is cheap.
+class LazyTriangleRay {
+public:
+    explicit LazyTriangleRay(const Ray3f &ray) : m_ray(ray), m_cullAbs(TriangleRay::cullAbsOf(ray)) {}
+    float cullLimit(float best) const { return TriangleRay::cullLimitOf(best, m_cullAbs); }
+    const TriangleRay &get() {
+        if (!m_ready) {
+            new (m_storage) TriangleRay(m_ray);
+            m_ready = true;
+        }
+        return *std::launder(reinterpret_cast<const TriangleRay *>(m_storage));
+    }
+
+private:
+    const Ray3f &m_ray;
+    float m_cullAbs;
+    bool m_ready = false;
+    alignas(TriangleRay) unsigned char m_storage[sizeof(TriangleRay)];
+};
+
 } // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -232,7 +256,7 @@ using SimdRay = NodeRay<kNodeLanes>;
 bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     const SlabRay slab(ray);
     const SimdRay simd(slab);
-    const TriangleRay tri(ray);
+    LazyTriangleRay tri(ray);
     Hit best;
     best.t = ray.maxt;
 
@@ -252,7 +276,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             float tk, tc;
             if (uint32_t kept = count & OctreeNode::kKeptMask; kept && slab.hit(m_kept[child], ray.mint, tri.cullLimit(best.t), tk)) {
                 if (pushed < 0 || !slab.hit(node, int(near[2]), ray.mint, tri.cullLimit(best.t), tc) || tk <= tc) {
-                    countedList(true, kept, [&] { return m_triangles.intersect(tri, m_kept[child].offset, kept, best); });
+                    countedList(true, kept, [&] { return m_triangles.intersect(tri.get(), m_kept[child].offset, kept, best); });
                     if (pushed >= 0 && tc > tri.cullLimit(best.t)) pushed = -1 - pushed;  // the nearest child now lies beyond the hit
                 } else {
                     int i = sp + pushed;
@@ -276,7 +300,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             sp += -1 - pushed;  // (-1 - k: k siblings pushed, the nearest child dropped)
         } else {
             countedList(count & kKeptTag, count & ~kKeptTag,
-                        [&] { return m_triangles.intersect(tri, child, count & ~kKeptTag, best); });
+                        [&] { return m_triangles.intersect(tri.get(), child, count & ~kKeptTag, best); });
         }
         // Next: the top of the stack, skipping entries beyond the closest hit so far.
         while (sp > 0 && stackT[sp - 1] > tri.cullLimit(best.t)) --sp;
@@ -293,7 +317,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
 bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
     const SlabRay slab(ray);
     const SimdRay simd(slab);
-    const TriangleRay tri(ray);
+    LazyTriangleRay tri(ray);
 
     alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
     alignas(32) float stackT[kStackSize + 8];
@@ -306,7 +330,7 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
             float tk;
             if (uint32_t kept = count & OctreeNode::kKeptMask;
                 kept && slab.hit(m_kept[child], ray.mint, ray.maxt, tk) &&
-                countedList(true, kept, [&] { return m_triangles.occluded(tri, m_kept[child].offset, kept, ray.maxt); }))
+                countedList(true, kept, [&] { return m_triangles.occluded(tri.get(), m_kept[child].offset, kept, ray.maxt); }))
                 return true;
             uint32_t near[3];
             int pushed = simd.push(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
@@ -318,7 +342,7 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
                 continue;
             }
         } else {
-            if (countedList(false, count, [&] { return m_triangles.occluded(tri, child, count, ray.maxt); })) return true;
+            if (countedList(false, count, [&] { return m_triangles.occluded(tri.get(), child, count, ray.maxt); })) return true;
         }
         if (sp == 0) break;
         --sp;

@@ -54,7 +54,7 @@ TriangleRay::TriangleRay(const Ray3f &ray) {
     sx = d[kx] / d[kz];
     sy = d[ky] / d[kz];
     sz = 1.0f / d[kz];
-    cullAbs = 0x1p-18f * std::max({std::abs(o[0]), std::abs(o[1]), std::abs(o[2])}) * std::abs(sz);
+    cullAbs = cullAbsOf(ray);
     for (int a = 0; a < 3; ++a) {
         neg[a] = std::signbit(d[a]) ? 1 : 0;
         rcpNear[a] = ray.dRcp[a] * (1.0f - 0x1p-20f);

@@ -11,7 +11,9 @@
 #pragma once
 
 #include <nori/accel.h>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -50,7 +52,14 @@ struct TriangleRay {
     /// entered just beyond best may still hold a triangle whose float t is below best; culling
     /// only past the tolerance makes the answer independent of the order in which an
     /// accelerator meets the triangles (octree and brute force agree bit for bit).
-    float cullLimit(float best) const { return best + (0x1p-18f * std::abs(best) + cullAbs); }
+    float cullLimit(float best) const { return cullLimitOf(best, cullAbs); }
+    static float cullLimitOf(float best, float cullAbs) { return best + (0x1p-18f * std::abs(best) + cullAbs); }
+    /// \brief cullAbs of \p ray, without the rest of the setup (|d[kz]| is the largest |d|).
+    static float cullAbsOf(const Ray3f &ray) {
+        const float maxO = std::max({std::abs(ray.o.x()), std::abs(ray.o.y()), std::abs(ray.o.z())});
+        const float maxD = std::max({std::abs(ray.d.x()), std::abs(ray.d.y()), std::abs(ray.d.z())});
+        return 0x1p-18f * maxO * std::abs(1.0f / maxD);
+    }
 };
 
 /// \brief Triangles of all meshes, copied in the order the accelerator's leaves visit them.

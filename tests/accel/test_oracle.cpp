@@ -177,6 +177,7 @@ struct SceneCase {
     std::string name;
     std::string shape;  ///< generator name, or empty
     std::string file;   ///< scene file relative to NORI_SHARED_DIR, or empty
+    gen::GenParams params{};  ///< of a generated shape (default: its own size, seed 1)
 };
 
 std::string sceneCaseName(const testing::TestParamInfo<SceneCase> &info) { return info.param.name; }
@@ -192,7 +193,7 @@ struct LoadedScene {
 
     bool load(const SceneCase &c) {
         if (!c.shape.empty()) {
-            gen::GeneratedScene g = gen::generateScene(c.shape);
+            gen::GeneratedScene g = gen::generateScene(c.shape, c.params);
             ownedCamera = gen::makeCamera(g.camera);
             owned.push_back(std::make_unique<Mesh>(std::move(g.mesh), c.shape));
             meshes.push_back(owned.back().get());
@@ -235,6 +236,13 @@ std::vector<RaySet> sceneRaySets(const LoadedScene &s, const EmbreeOracle &oracl
 std::vector<SceneCase> sceneCases() {
     std::vector<SceneCase> cases;
     for (const gen::ShapeInfo &info : gen::shapes()) cases.push_back({info.name, info.name, ""});
+    // Each shape once more as a scene nothing was tuned on: another seed, a third of the size.
+    for (const gen::ShapeInfo &info : gen::shapes()) {
+        gen::GenParams params;
+        params.seed = 5;
+        params.triangles = std::max(info.minTriangles, info.defaultTriangles / 3);
+        cases.push_back({std::string(info.name) + "_seed5", info.name, "", params});
+    }
     cases.push_back({"pa5_cbox", "", "nori-scenes/pa5/cbox/cbox_mis.xml"});
     cases.push_back({"pa5_table", "", "nori-scenes/pa5/table/table_mis.xml"});
     cases.push_back({"pa5_veach_mi", "", "nori-scenes/pa5/veach_mi/veach_mis.xml"});
