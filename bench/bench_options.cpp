@@ -122,6 +122,14 @@ void OptionParser::declare(CliApp &cli, BenchOptions &o) {
         ->option_text("FILE")->group(OutputGroup);
     app.add_option("--markdown", o.markdownPath, "Table 1 layout plus Embree and ratios")
         ->option_text("FILE")->group(OutputGroup);
+    app.add_option("--dump-disputed", o.dumpDisputed,
+                   "write every ray the exact referee decides for the octree runs (ray, the octree's, Embree "
+                   "default's and robust's answers and verdicts, the triangles they name, as hex floats)")
+        ->option_text("FILE")->group(OutputGroup);
+    app.add_option("--dump-answers", o.dumpAnswers,
+                   "write every ray of every set with the octree runs' answer (binary records of nine floats: "
+                   "origin, direction, mint, maxt, answer) to compare two builds ray by ray")
+        ->option_text("FILE")->group(OutputGroup);
     CLI::Option *plots = app.add_option("--plots", o.plotsDir, "PNG charts (runs bench/plot.py)")
                              ->option_text("DIR")->group(OutputGroup);
     app.add_option("--python", o.python, "interpreter for the charts (default /usr/bin/python3)")

@@ -37,6 +37,12 @@ struct BenchOptions {
     std::string renderImages;         ///< --render-images DIR: both renders and their difference
     bool embreeRobust = false;        ///< --embree-robust: render mode's Embree in robust mode
     std::string jsonPath, markdownPath, plotsDir;
+    /// --dump-disputed FILE: every refereed ray of the octree runs, with the three answers, their
+    /// verdicts and the named triangles (hex floats), for replaying hard rays in tests.
+    std::string dumpDisputed;
+    /// --dump-answers FILE: every ray and the octree runs' answer to it (binary, see bench/README.md),
+    /// to compare two builds' answers ray by ray.
+    std::string dumpAnswers;
     std::string python = "/usr/bin/python3";
     std::vector<std::string> searchPath;  ///< -a (repeatable)
     std::set<std::string> given;      ///< the options that appeared on the command line

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
 
 namespace nori::bench {
 
@@ -35,7 +36,20 @@ double msSince(std::chrono::steady_clock::time_point start) {
 
 BenchRunner::BenchRunner(const BenchOptions &options, const OctreeCatalog &catalog)
     : m_options(options), m_catalog(catalog), m_timer(options.threads, options.cpuTime),
-      m_threads(options.threads > 0 ? options.threads : tbb::info::default_concurrency()) {}
+      m_threads(options.threads > 0 ? options.threads : tbb::info::default_concurrency()) {
+    if (!options.dumpDisputed.empty()) {
+        m_dump.reset(std::fopen(options.dumpDisputed.c_str(), "w"), [](std::FILE *f) {
+            if (f) std::fclose(f);
+        });
+        if (!m_dump) throw std::runtime_error(options.dumpDisputed + ": cannot open for writing");
+    }
+    if (!options.dumpAnswers.empty()) {
+        m_answers.reset(std::fopen(options.dumpAnswers.c_str(), "wb"), [](std::FILE *f) {
+            if (f) std::fclose(f);
+        });
+        if (!m_answers) throw std::runtime_error(options.dumpAnswers + ": cannot open for writing");
+    }
+}
 
 template <typename Tracer>
 std::array<SetTiming, 3> BenchRunner::interleaved(const Tracer &tracer, const EmbreeOracle &embree,
@@ -60,6 +74,14 @@ std::array<SetTiming, 3> BenchRunner::interleaved(const Tracer &tracer, const Em
         t.hasAccuracy = true;
         t.accuracy = Accuracy::compare(answers, set.reference, set.rays);
         referee(tracer, embree, set, embreeAnswers, t.accuracy);
+        if (m_answers && !m_dumpWho.empty()) {
+            // One record of nine floats per ray: o, d, mint, maxt, the answer (as RaySet::reference).
+            for (size_t r = 0; r < set.rays.size(); ++r) {
+                const Ray3f &ray = set.rays[r];
+                const float rec[9] = {ray.o.x(), ray.o.y(), ray.o.z(), ray.d.x(), ray.d.y(), ray.d.z(), ray.mint, ray.maxt, answers[r]};
+                std::fwrite(rec, sizeof(float), 9, m_answers.get());
+            }
+        }
         if (embreeSamples) {
             auto &dst = (*embreeSamples)[size_t(s)];
             dst.insert(dst.end(), embreeRuns.begin(), embreeRuns.end());
@@ -87,9 +109,49 @@ void BenchRunner::referee(const Tracer &tracer, const EmbreeOracle &peer, const 
         std::vector<uint32_t> candidates;
         for (int k = 0; k < 3; ++k)
             if (hit[k]) candidates.push_back(hits[k].prim);
-        accuracy.exactWrong += m_judge->referee(ray, hit[0], hits[0], candidates) < 0;
-        accuracy.peerWrong += m_judge->referee(ray, hit[1], hits[1], candidates) < 0;
-        accuracy.referenceWrong += m_judge->referee(ray, hit[2], hits[2], candidates) < 0;
+        int verdict[3];
+        for (int k = 0; k < 3; ++k) verdict[k] = m_judge->referee(ray, hit[k], hits[k], candidates);
+        accuracy.exactWrong += verdict[0] < 0;
+        accuracy.peerWrong += verdict[1] < 0;
+        accuracy.referenceWrong += verdict[2] < 0;
+        if (m_dump && !m_dumpWho.empty()) dumpRay(set, i, hit, hits, verdict);
+    }
+}
+
+void BenchRunner::dumpRay(const RaySet &set, uint32_t index, const bool hit[3], const Hit hits[3],
+                          const int verdict[3]) const {
+    // Text, one record per ray; floats as %a so that a test can replay the ray bit for bit.
+    std::FILE *f = m_dump.get();
+    const Ray3f &r = set.rays[index];
+    std::fprintf(f, "ray %s %u o %a %a %a d %a %a %a mint %a maxt %a\n", set.name.c_str(), index,
+                 r.o.x(), r.o.y(), r.o.z(), r.d.x(), r.d.y(), r.d.z(), r.mint, r.maxt);
+    const char *names[3] = {"octree", "default", "robust"};
+    for (int k = 0; k < 3; ++k) {
+        const char *v = verdict[k] > 0 ? "right" : verdict[k] < 0 ? "WRONG" : "undecidable";
+        if (hit[k])
+            std::fprintf(f, "  %s hit t %a (%.9g) prim %u u %a v %a %s\n", names[k], hits[k].t, hits[k].t, hits[k].prim,
+                         hits[k].u, hits[k].v, v);
+        else
+            std::fprintf(f, "  %s miss %s\n", names[k], v);
+    }
+    std::vector<uint32_t> prims;
+    for (int k = 0; k < 3; ++k)
+        if (hit[k] && std::find(prims.begin(), prims.end(), hits[k].prim) == prims.end()) prims.push_back(hits[k].prim);
+    for (uint32_t prim : prims) {
+        uint32_t local = prim;
+        for (const Mesh *m : m_dumpMeshes) {
+            if (local >= m->triangleCount()) {
+                local -= m->triangleCount();
+                continue;
+            }
+            std::fprintf(f, "  tri %u", prim);
+            for (int c = 0; c < 3; ++c) {
+                const Point3f p = m->vertex(local, c);
+                std::fprintf(f, " %a %a %a", p.x(), p.y(), p.z());
+            }
+            std::fprintf(f, "\n");
+            break;
+        }
     }
 }
 
@@ -153,6 +215,8 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
     result.embreeRobust.bytes = robust->bytes();
     m_judge = &judge;
     m_robust = robust.get();
+    m_dumpMeshes = meshes;
+    if (m_dump) std::fprintf(m_dump.get(), "input %s\n", input.name.c_str());
     std::fprintf(stderr, "[nori-bench]   embree build %.1f ms (%lld bytes), robust %.1f ms (%lld bytes)\n",
                  result.embree.buildMs, result.embree.bytes, result.embreeRobust.buildMs, result.embreeRobust.bytes);
 
@@ -201,7 +265,10 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
             builds.push_back(m_options.cpuTime ? extra->buildCpuMilliseconds() : extra->buildMilliseconds());
         }
         std::unique_ptr<Accel> accel = OctreeCatalog::create(configs[c]);
+        m_dumpWho = configs[c].label();
+        if (m_dump) std::fprintf(m_dump.get(), "run %s\n", m_dumpWho.c_str());
         RunResult run = runAccel("octree", *accel, &configs[c], input, *fast, work, &embreeSamples);
+        m_dumpWho.clear();
         builds.push_back(run.buildMs);
         run.buildMs = median(builds);
         result.runs.push_back(std::move(run));

@@ -7,6 +7,8 @@
 #include "mesh_source.h"
 #include "octree_catalog.h"
 #include "ray_timer.h"
+#include <cstdio>
+#include <memory>
 
 namespace nori {
 class EmbreeOracle;
@@ -44,9 +46,17 @@ private:
     void referee(const Tracer &tracer, const EmbreeOracle &peer, const RaySet &set, const std::vector<float> &peerAnswers,
                  Accuracy &accuracy) const;
 
+    /// \brief --dump-disputed: one refereed ray, its three answers and verdicts, the triangles.
+    void dumpRay(const RaySet &set, uint32_t index, const bool hit[3], const Hit hits[3], const int verdict[3]) const;
+
     // The referee's context, set by run() for the input being measured.
     mutable const OracleJudge *m_judge = nullptr;
     mutable const EmbreeOracle *m_robust = nullptr;
+    // --dump-disputed: the file, the octree run being refereed ("" for Embree's own runs) and
+    // the input's meshes (global triangle ids in their order).
+    std::shared_ptr<std::FILE> m_dump, m_answers;
+    mutable std::string m_dumpWho;
+    mutable std::vector<const Mesh *> m_dumpMeshes;
 
     const BenchOptions &m_options;
     const OctreeCatalog &m_catalog;

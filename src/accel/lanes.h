@@ -13,7 +13,9 @@
 ///     the others to 0 without touching their memory; f.storeu(p) writes L floats;
 ///   - f + g, f - g, f * g, f / g (IEEE, lane by lane);
 ///   - f < g, <=, >, >=, == (ordered: false on NaN) and f != g (unordered: true on NaN) give M;
-///   - abs(f) clears the sign bit (also of a NaN);
+///   - abs(f) clears the sign bit (also of a NaN); maxAbs(f, g) = max(|f|, |g|) (one AVX-512
+///     vrangeps): where f or g is a NaN the result may be a NaN or not, depending on the width;
+///     use it only where a NaN argument cannot change what is decided;
 ///   - max(f, g) = f > g ? f : g and min(f, g) = f < g ? f : g lane by lane (the x86 maxps/minps
 ///     rule: the second operand on NaN or equality, so a NaN in f never wins);
 ///   - select(m, f, g), reduceMin(m, f) (+inf when m is empty), lane(f, j);
@@ -86,6 +88,7 @@ template <> struct VFloat<1> {
     friend VMask<1> operator==(VFloat a, VFloat b) { return {a.f == b.f}; }
     friend VMask<1> operator!=(VFloat a, VFloat b) { return {a.f != b.f}; }
     friend VFloat abs(VFloat a) { return std::fabs(a.f); }
+    friend VFloat maxAbs(VFloat a, VFloat b) { return max(abs(a), abs(b)); }
     friend VFloat max(VFloat a, VFloat b) { return a.f > b.f ? a.f : b.f; }
     friend VFloat min(VFloat a, VFloat b) { return a.f < b.f ? a.f : b.f; }
     friend VFloat select(VMask<1> m, VFloat a, VFloat b) { return m.b ? a : b; }
@@ -167,6 +170,7 @@ template <> struct VFloat<8> {
     friend VMask<8> operator==(VFloat a, VFloat b) { return NORI_CMP8(a.v, b.v, _CMP_EQ_OQ); }
     friend VMask<8> operator!=(VFloat a, VFloat b) { return NORI_CMP8(a.v, b.v, _CMP_NEQ_UQ); }
     friend VFloat abs(VFloat a) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a.v); }
+    friend VFloat maxAbs(VFloat a, VFloat b) { return max(abs(a), abs(b)); }
     friend VFloat max(VFloat a, VFloat b) { return _mm256_max_ps(a.v, b.v); }
     friend VFloat min(VFloat a, VFloat b) { return _mm256_min_ps(a.v, b.v); }
     friend VFloat select(VMask<8> m, VFloat a, VFloat b) {
@@ -282,6 +286,8 @@ template <> struct VFloat<16> {
     friend VMask<16> operator==(VFloat a, VFloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_EQ_OQ)}; }
     friend VMask<16> operator!=(VFloat a, VFloat b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_NEQ_UQ)}; }
     friend VFloat abs(VFloat a) { return _mm512_abs_ps(a.v); }
+    // vrangeps, imm 0b1011: the operand of larger magnitude, sign cleared.
+    friend VFloat maxAbs(VFloat a, VFloat b) { return _mm512_range_ps(a.v, b.v, 0x0B); }
     friend VFloat max(VFloat a, VFloat b) { return _mm512_max_ps(a.v, b.v); }
     friend VFloat min(VFloat a, VFloat b) { return _mm512_min_ps(a.v, b.v); }
     friend VFloat select(VMask<16> m, VFloat a, VFloat b) { return _mm512_mask_blend_ps(m.k, b.v, a.v); }

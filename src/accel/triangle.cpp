@@ -9,6 +9,7 @@
 #pragma GCC diagnostic ignored "-Wuninitialized"
 
 #include "triangle.h"
+#include "exact_edges.h"
 #include "lanes.h"
 #include <algorithm>
 #include <cmath>
@@ -200,7 +201,8 @@ inline float signedFloat(double x) {
 /// estimate exceeds its tolerance. A lane holding \p skipPrim (the closest hit so far, met again
 /// in another leaf) is no hit: its t is known already. The lanes of \p inside are known to cross
 /// the plane strictly inside the triangle (the kernel's barycentrics exceed their rounding
-/// error bound): they skip the inside test below, which they would pass.
+/// error bound, or the watertight kernel's exact edge volumes are all nonzero): they skip the
+/// inside test below, which they would pass.
 template <int L>
 [[gnu::noinline]] VFloat<L> exactPlaneT(VMask<L> redo, VMask<L> inside, const TriangleRay &r, const float *rows,
                                         uint32_t n, uint32_t i, VFloat<L> t, uint32_t skipPrim) {
@@ -231,7 +233,8 @@ template <int L>
             out[j] = signedFloat(te);
             continue;
         }
-        // The float edge test let the lane through (Woop et al.'s decision, kept). Where the
+        // The kernel's edge test let the lane through: mt's float test (kept), or the watertight
+        // kernel's exact one for a crossing on an edge (its other lanes skip this). Where the
         // exact crossing lies off the triangle (a barycentric coordinate below -2^-24, about
         // the rounding of this double computation on a sliver), i.e. for a ray within the
         // edge test's rounding of an edge at a grazing angle or on a needle whose plane is
@@ -312,45 +315,67 @@ template <int L>
     return {t, u, v, valid, known};
 }
 
-/// Sheared corners (ax, ay, bx, by, cx, cy) and edge functions of one watertight step.
-template <int L>
-struct Sheared {
-    VFloat<L> c[6];
-};
+/// Edge functions of one watertight step.
 template <int L>
 struct Edges {
     VFloat<L> U, V, W;
 };
 
-/// The lanes of \p redo get their edge functions again in double precision. The products of two
-/// floats are exact in double and a difference of doubles is zero only when they are equal, so
-/// the sign is exact (Woop et al. 2013, section 4); the float evaluation can only have rounded a
-/// nonzero value to zero (rounding is monotonic, it never flips a sign). A rare, out-of-line
-/// path taking its arguments by value, so that the common path keeps them in registers.
+/// The lanes of \p redo get their edge functions from the real ray and triangle
+/// (exactEdgeVolumes: exact signs), scaled to at most 1 in magnitude; a nonzero value too small
+/// for a float keeps its sign. A lane with a non-finite input gets mixed signs (a miss). Rare and
+/// out of line: only rays within the float edge functions' rounding error of an edge get here.
 template <int L>
-[[gnu::noinline, gnu::cold]] Edges<L> exactEdgeFunctions(VMask<L> redo, Sheared<L> s, Edges<L> e) {
-    float c[6][L], u[L], v[L], w[L];
-    for (int k = 0; k < 6; ++k) s.c[k].storeu(c[k]);
+[[gnu::noinline, gnu::cold]] Edges<L> exactEdges(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
+                                                 Edges<L> e) {
+    float u[L], v[L], w[L];
     e.U.storeu(u);
     e.V.storeu(v);
     e.W.storeu(w);
     for (unsigned b = bits(redo); b; b &= b - 1) {
         const int j = __builtin_ctz(b);
-        const double ax = c[0][j], ay = c[1][j], bx = c[2][j], by = c[3][j], cx = c[4][j], cy = c[5][j];
-        u[j] = signedFloat(cx * by - cy * bx);
-        v[j] = signedFloat(ax * cy - ay * cx);
-        w[j] = signedFloat(bx * ay - by * ax);
+        float p[3][3];
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 3; ++k) p[c][k] = rows[size_t(3 * c + k) * n + i + uint32_t(j)];
+        double vol[3];
+        if (!exactEdgeVolumes(r.o, r.d, p, vol)) {
+            u[j] = 1.0f, v[j] = -1.0f, w[j] = 0.0f;
+            continue;
+        }
+        const double scale = std::max({std::abs(vol[0]), std::abs(vol[1]), std::abs(vol[2])});
+        if (scale > 0.0) vol[0] /= scale, vol[1] /= scale, vol[2] /= scale;
+        u[j] = signedFloat(vol[0]);
+        v[j] = signedFloat(vol[1]);
+        w[j] = signedFloat(vol[2]);
     }
     return {VFloat<L>::loadu(u), VFloat<L>::loadu(v), VFloat<L>::loadu(w)};
 }
 
+/// Lanes whose three edge functions have mixed signs (zero counts as either sign): a miss.
+template <int L>
+[[gnu::always_inline]] inline VMask<L> mixedSigns(VFloat<L> U, VFloat<L> V, VFloat<L> W) {
+    return ((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f));
+}
+
 /// Woop, Benthin & Wald 2013 (JCGT 2(1)) on rows p0, p1, p2: vertices relative to the origin,
 /// sheared so that the ray is the +z axis, then 2D edge functions; both windings hit.
-/// The hit decision is the paper's (exact edge signs); t = sum E_i z_i / sum E_i comes from the
-/// same sheared corners, whose rounding errors scale with their distance |p - o| from the ray
-/// origin, not with t: on a triangle much larger than the hit distance (a 2000-unit ground seen
-/// from 6 units) t is off by more than the distance to the plane, and a ray leaving the surface
-/// re-hits it. Those lanes get t from the plane equation in double (exactPlaneT).
+///
+/// The decision is exact for the real ray and triangle, not only for the rounded sheared corners
+/// (the paper's guarantee): a sheared coordinate is a difference of two rounded terms, and where
+/// they cancel (an axis-aligned box edge seen along its face) it rounds to 0 or past it, so the
+/// paper's exact signs of the rounded corners put a ray up to ~1e-7 of the scale on the wrong
+/// side of an edge: hits on a box's silhouette it passes beside, misses of a grass blade it
+/// crosses. Each float edge function is within 16u M (M + Z) of the exact one (M = the largest
+/// sheared |x|, |y|, Z = the largest |z| before scaling, u = 2^-24; see below); lanes whose signs
+/// that bound settles are decided in float, the others by exactEdges (exact signs of the real
+/// edge volumes): a ray through a shared edge still hits one of its two triangles, and both
+/// exactly when it meets the edge's line.
+///
+/// t = sum E_i z_i / sum E_i comes from the same sheared corners, whose rounding errors scale
+/// with their distance |p - o| from the ray origin, not with t: on a triangle much larger than the
+/// hit distance (a 2000-unit ground seen from 6 units) t is off by more than the distance to the
+/// plane, and a ray leaving the surface re-hits it. Those lanes, and the lanes whose exact
+/// decision overturned the float one, get t from the plane equation in double (exactPlaneT).
 template <int L>
 [[gnu::always_inline]] inline Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt,
                                                  uint32_t skipPrim) {
@@ -367,17 +392,32 @@ template <int L>
     F U = cx * by - cy * bx;
     F V = ax * cy - ay * cx;
     F W = bx * ay - by * ax;
-    // Hit unless the signs are mixed (zero counts as either sign).
-    VMask<L> valid = m & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
+    // Error bound. A sheared coordinate x = fl(fl(p - o) - fl(fl(sx) fl(p_z - o_z))) is off the
+    // exact one (exact shear of the real ray) by at most u (|p - o| + 3 |sx z| + |x|) <=
+    // u (2M + 4Z) (|sx|, |sy| <= 1), so U = fl(fl(cx by) - fl(cy bx)) by at most
+    // 4M u (2M + 4Z) + 4u M^2 <= 16u M (M + Z). The exact U, V, W of the real ray are its edge
+    // volumes over d[kz], one sign for all three. The bound below is 4x that (for its own
+    // rounding), plus 2^-125 for underflow (products and shears of coordinates near 2^-126).
+    const F M = max(max(max(abs(ax), abs(ay)), max(abs(bx), abs(by))), max(abs(cx), abs(cy)));
+    const F bound = F(0x1p-18f) * M * (M + max(max(abs(az), abs(bz)), abs(cz))) + F(0x1p-125f);
+    const F negBound = F(0.0f) - bound;
+    const VMask<L> neg = (U < negBound) | (V < negBound) | (W < negBound), pos = (U > bound) | (V > bound) | (W > bound);
+    // Surely missed: signs surely mixed.
+    VMask<L> valid = m & ~(neg & pos);
     if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
-    // A float edge function that is not zero has the exact sign, so a lane with mixed nonzero
-    // signs misses whatever its zeros are: only the lanes that pass need the exact fallback
-    // (and the steps where none passes skip the zero test).
-    const VMask<L> redo = valid & ((U == 0.0f) | (V == 0.0f) | (W == 0.0f));
-    if (any(redo)) {
-        const Edges<L> e = exactEdgeFunctions(redo, Sheared<L>{{ax, ay, bx, by, cx, cy}}, Edges<L>{U, V, W});
-        U = e.U, V = e.V, W = e.W;
-        valid = m & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
+    // Surely hit (crossing strictly inside): three signs surely equal. The rest: exact signs.
+    const VMask<L> inside = ((U > bound) & (V > bound) & (W > bound)) | ((U < negBound) & (V < negBound) & (W < negBound));
+    const VMask<L> unsure = valid & ~inside;
+    // The lanes whose exact decision differs from the float signs' (zero counting as either)
+    // take the exact volumes; the others keep their float edge functions, so t and u, v stay
+    // bit for bit where the decision does not change.
+    VMask<L> exactly{};
+    if (any(unsure)) {
+        const Edges<L> e = exactEdges(unsure, r, rows, n, i, Edges<L>{U, V, W});
+        const VMask<L> floatHit = ~mixedSigns(U, V, W), exactHit = ~mixedSigns(e.U, e.V, e.W);
+        exactly = unsure & ((floatHit & ~exactHit) | (exactHit & ~floatHit));
+        U = select(exactly, e.U, U), V = select(exactly, e.V, V), W = select(exactly, e.W, W);
+        valid = m & ~mixedSigns(U, V, W);
         if (!any(valid)) return {U, V, W, valid};
     }
     F det = U + V + W;
@@ -393,24 +433,20 @@ template <int L>
     // ~6u M^3 / |det| across the triangle (M = |x, y|_max), which the plane's slope turns into an
     // error off the plane of the same size: large on slivers and grazing rays. Beyond 2^-19 of
     // the problem's scale (needsExactT), i.e. on triangles much larger than their distance to
-    // the origin and on slivers, t comes from the plane equation in double instead.
+    // the origin and on slivers, t comes from the plane equation in double instead; so does t of
+    // every lane the exact decision overturned (its U, V, W are exact volumes, not the corners').
     if (any(valid)) {
         const F zmax = max(max(abs(za), abs(zb)), abs(zc));
-        const F xymax = max(max(max(abs(ax), abs(ay)), max(abs(bx), abs(by))), max(abs(cx), abs(cy)));
         const TScale sc(r);
-        const F shape = xymax * xymax * xymax * abs(invDet);
-        const F err = F(0x1p-22f) * ((xymax + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
-        const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt);
+        const F shape = M * M * M * abs(invDet);
+        const F err = F(0x1p-22f) * ((M + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
+        const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt) | (valid & exactly);
         if (any(redo)) {
-            // Rounding error bound of the edge functions against those of the exact ray and
-            // triangle: each sheared coordinate is off by at most u (2M + 4.1A) (M = xymax,
-            // A = zmax |d|_inf: the corners' z before scaling; |sx|, |sy| <= 1), so U, V and W by
-            // at most 17u M (M + A). Lanes whose three edge functions exceed that by a factor 3.8
-            // surely cross inside the triangle.
-            const F bound = F(0x1p-18f) * xymax * (xymax + zmax * F(sc.dInf));
-            const VMask<L> inside = (abs(U) > bound) & (abs(V) > bound) & (abs(W) > bound);
-            t = exactPlaneT(redo, inside, r, rows, n, i, t, skipPrim);
-            known = redo & inside;
+            // Lanes decided exactly with no zero volume cross strictly inside too; those with a
+            // zero one cross on an edge, and exactPlaneT's inside test keeps them.
+            const VMask<L> strict = inside | (exactly & (U != 0.0f) & (V != 0.0f) & (W != 0.0f));
+            t = exactPlaneT(redo, strict, r, rows, n, i, t, skipPrim);
+            known = redo & strict;
         }
     }
     valid = valid & (t >= r.mint) & (t <= maxt);

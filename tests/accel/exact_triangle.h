@@ -144,4 +144,13 @@ inline GeometricAnswer geometric(const Ray3f &ray, const Point3f &p0, const Poin
     return g;
 }
 
+/// Exact sign of the edge volume d . ((a - o) x (b - o)): 0 exactly when the real line o + t d
+/// meets the line through a and b (or is parallel to it).
+inline int edgeVolumeSign(const Ray3f &ray, const Point3f &a, const Point3f &b) {
+    using V = std::array<Int, 3>;
+    auto rel = [&](const Point3f &p) { return V{scaled(p.x()) - scaled(ray.o.x()), scaled(p.y()) - scaled(ray.o.y()), scaled(p.z()) - scaled(ray.o.z())}; };
+    const V A = rel(a), B = rel(b), d{scaled(ray.d.x()), scaled(ray.d.y()), scaled(ray.d.z())};
+    return sign(Int(d[0] * (A[1] * B[2] - A[2] * B[1]) + d[1] * (A[2] * B[0] - A[0] * B[2]) + d[2] * (A[0] * B[1] - A[1] * B[0])));
+}
+
 } // namespace nori::exact

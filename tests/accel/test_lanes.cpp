@@ -1,10 +1,14 @@
 /// \file test_lanes.cpp
 /// \brief The lane operations the octree node kernel relies on (lookup8, ^, compressStore) give
-/// the scalar answer at every width compiled into this build, for every mask of eight lanes.
+/// the scalar answer at every width compiled into this build, for every mask of eight lanes;
+/// maxAbs (the watertight kernel's error bound) is max(|a|, |b|) bit for bit on every finite,
+/// infinite, zero and subnormal pair.
 #include <accel/lanes.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 using namespace nori;
@@ -53,6 +57,36 @@ TEST(Lanes, CompressedLookupsMatchScalarOneLane) { checkCompressedLookups<1>(); 
 
 #if NORI_LANES_AVX2
 TEST(Lanes, CompressedLookupsMatchScalarEightLanes) { checkCompressedLookups<8>(); }
+#endif
+
+/// maxAbs(a, b) == max(|a|, |b|) bit for bit, at L lanes, on every pair of \p values.
+template <int L>
+void checkMaxAbs() {
+    using F = lanes::VFloat<L>;
+    const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 0x1p-149f, -0x1p-149f, 0x1p-126f, -3.4e38f, 3.4e38f,
+                            Infinity, -Infinity, 1.5f, -1.5f, 7e-20f, -2e19f, 0.3f};
+    const int n = int(sizeof(values) / sizeof(values[0]));
+    for (int i = 0; i < n; ++i)
+        for (int j0 = 0; j0 < n; j0 += L) {
+            float a[L], b[L], got[L];
+            for (int l = 0; l < L; ++l) a[l] = values[i], b[l] = values[(j0 + l) % n];
+            maxAbs(F::loadu(a), F::loadu(b)).storeu(got);
+            for (int l = 0; l < L; ++l) {
+                const float want = std::max(std::fabs(a[l]), std::fabs(b[l]));
+                EXPECT_EQ(std::memcmp(&got[l], &want, sizeof(float)), 0)
+                    << "L=" << L << ": maxAbs(" << a[l] << ", " << b[l] << ") = " << got[l] << ", want " << want;
+            }
+        }
+}
+
+TEST(Lanes, MaxAbsIsTheLargerMagnitudeOneLane) { checkMaxAbs<1>(); }
+
+#if NORI_LANES_AVX2
+TEST(Lanes, MaxAbsIsTheLargerMagnitudeEightLanes) { checkMaxAbs<8>(); }
+#endif
+
+#if NORI_LANES_AVX512
+TEST(Lanes, MaxAbsIsTheLargerMagnitudeSixteenLanes) { checkMaxAbs<16>(); }
 #endif
 
 } // namespace
