@@ -849,8 +849,15 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     {
         Ref *out[8];
         for (int c = 0; c < 8; ++c) out[c] = lists.get() + start[c];
-        for (size_t i = 0; i < n; ++i)
+        // Between two straddlers every reference goes to one child (its box lies in it); the
+        // straddlers go to all of theirs (none when kept).
+        size_t i = 0;
+        for (const uint32_t next : straddlers) {
+            for (; i < next; ++i) *out[__builtin_ctz(masks[i])]++ = ids[i];
             for (unsigned m = masks[i]; m; m &= m - 1) *out[__builtin_ctz(m)]++ = ids[i];
+            ++i;
+        }
+        for (; i < n; ++i) *out[__builtin_ctz(masks[i])]++ = ids[i];
     }
     scratch.reset();
 
