@@ -19,8 +19,8 @@ using Rule = OctreeAccel::BuildRule;
 /// Subtrees with more references than this are built as parallel tasks.
 constexpr size_t kParallelRefs = 4096;
 
-/// How many references ahead the classification prefetches a triangle's corners.
-constexpr size_t kPrefetch = 16;
+/// The classification's block of references (see split()).
+constexpr size_t kBlock = 64;
 
 /// The whole tree holds at most this many references per triangle (see split()): `count` and
 /// `seed` (which copy a triangle into every cell it touches) and `sah` (which sends triangles
@@ -114,12 +114,49 @@ inline Float4 load4(const Point3f &p) { return Float4{p.x(), p.y(), p.z(), 0.0f}
 inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
 inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
 
+/// Classifier::mask111's table for the classic layout under \p pattern (one bisection per
+/// axis, in any order) and the plane rule \p oneSide: bits 0-2 of an index give the first slab
+/// per axis, bits 3-5 the last; the entry is the mask of the cells in those slabs. It depends
+/// only on which bit of a slot each axis sets, not on the cell, so it is made once per order
+/// (filling it for every node was 5 % of the build's instructions).
+const uint8_t *tableFor111(const OctreeNode::Pattern &pattern, bool oneSide) {
+    static const auto tables = [] {
+        std::array<std::array<uint8_t, 64>, 128> t{};
+        for (uint32_t code = 0; code < 64; ++code) {
+            const OctreeNode::Pattern p = OctreeNode::Pattern::fromCode(code);
+            int level[3] = {-1, -1, -1};  // the level that bisects each axis
+            for (int l = 0; l < 3; ++l)
+                if (p.axis[l] < 3) level[p.axis[l]] = l;
+            if (level[0] < 0 || level[1] < 0 || level[2] < 0) continue;
+            for (int side = 0; side < 2; ++side)
+                for (unsigned bits = 0; bits < 64; ++bits) {
+                    unsigned m = 0xFFu;
+                    for (int a = 0; a < 3; ++a) {
+                        unsigned first = (bits >> a) & 1u, last = (bits >> (3 + a)) & 1u;
+                        if (side) last = last > first ? last : first;
+                        // The cells whose slab along a (their bit at level[a]) is in [first, last].
+                        unsigned cells = 0;
+                        for (int c = 0; c < 8; ++c) {
+                            unsigned slab = (unsigned(c) >> (2 - level[a])) & 1u;
+                            if (slab >= first && slab <= last) cells |= 1u << c;
+                        }
+                        m &= cells;
+                    }
+                    t[2 * code + side][bits] = uint8_t(m);
+                }
+        }
+        return t;
+    }();
+    return tables[2 * pattern.code() + (oneSide ? 1 : 0)].data();
+}
+
 /// The child cells a bounding box touches (closed: touching a plane counts), by a table per
 /// axis: along each axis the eight cells form up to eight slabs, a box covers a run of them,
 /// and range[a][first][last] is the mask of the cells in that run.
 struct Classifier {
     int planes[3] = {};      ///< interior slab boundaries per axis
     float plane[3][7] = {};  ///< their positions, increasing
+    Float4 planes4[3][2];    ///< the same, four to a vector, padded with +inf
     uint8_t range[3][8][8] = {};
     uint8_t axis[3] = {};    ///< the pattern's bisection axes, level by level
     float mid[7] = {};       ///< bisection planes: level l, cells above prefix q at mid[2^l - 1 + q]
@@ -127,7 +164,7 @@ struct Classifier {
     /// in one vector, and the mask for each outcome of the six comparisons (bits 0-2: first
     /// slab per axis, bits 3-5: last slab per axis).
     Float4 planes111 = {};
-    uint8_t table111[64] = {};
+    const uint8_t *table111 = nullptr;
 
     /// Closed cells (false: a box touching a plane goes to both sides, as the `count` and
     /// `seed` rules do) or one side (true, `sah`): a box that only touches a plane from one
@@ -163,17 +200,11 @@ struct Classifier {
             }
         }
         (void)cell;
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < 8; ++k) planes4[a][k / 4][k % 4] = k < planes[a] && k < 7 ? plane[a][k] : Infinity;
         if (planes[0] == 1 && planes[1] == 1 && planes[2] == 1) {
             planes111 = Float4{plane[0][0], plane[1][0], plane[2][0], Infinity};
-            for (unsigned bits = 0; bits < 64; ++bits) {
-                unsigned m = 0xFFu;
-                for (int a = 0; a < 3; ++a) {
-                    unsigned first = (bits >> a) & 1u, last = (bits >> (3 + a)) & 1u;
-                    if (oneSide) last = last > first ? last : first;
-                    m &= range[a][first][last];
-                }
-                table111[bits] = uint8_t(m);
-            }
+            table111 = tableFor111(pattern, oneSide);
         }
         // The plane of bisection l under prefix q is the lower side of the first cell above it
         // (cellOf's arithmetic: the same float).
@@ -192,11 +223,56 @@ struct Classifier {
         }
         return c;
     }
+    /// (`oneSide`) The one cell that every bounding box inside [lo, hi] goes to, or 0 when
+    /// they may go to different cells. Along each axis a box [l, h] inside [lo, hi] starts in
+    /// slab (planes <= l) >= (planes <= lo) and ends in slab max(planes <= l, planes < h) <=
+    /// (planes <= hi); with no plane in (lo, hi] both bounds are one slab.
+    unsigned soleCell(const float lo[3], const float hi[3]) const {
+        unsigned m = 0xFFu;
+        for (int a = 0; a < 3; ++a) {
+            int first = 0, last = 0;
+            for (int k = 0; k < planes[a]; ++k) {
+                first += plane[a][k] <= lo[a];
+                last += plane[a][k] <= hi[a];
+            }
+            if (first != last) return 0;
+            m &= range[a][first][first];
+        }
+        return (m & (m - 1)) ? 0u : m;
+    }
+    /// Slot whose cell holds the point \p p (slotOfCentre() of a box's centre).
+    int slotOfPoint(const float p[3]) const {
+        int c = 0;
+        for (int level = 0; level < 3; ++level) c = 2 * c + int(p[axis[level]] >= mid[(1 << level) - 1 + c]);
+        return c;
+    }
     /// Cells along axis \p a that the extent [lo, hi] reaches, for an axis of \p P planes
     /// (P = 0, 1, 3 or 7: no, one, two or three bisections along it).
     template <int P, bool OneSide> unsigned axisMask(int a, float lo, float hi) const {
         if constexpr (P == 0) {
             return 0xFFu;
+#ifdef __SSE__
+        } else if constexpr (P == 3 || P == 7) {
+            // The planes four at a time (padded with +inf, never below a finite bound): a
+            // comparison per four planes and the count of its true lanes.
+            const Float4 l = Float4{} + lo, h = Float4{} + hi;
+            unsigned first = 0, last = 0;
+            for (int q = 0; q < (P + 1) / 4; ++q) {
+                const Float4 pl = planes4[a][q];
+                Int4 f, t;
+                if constexpr (OneSide) {
+                    f = pl <= l;
+                    t = pl < h;
+                } else {
+                    f = pl < l;
+                    t = pl <= h;
+                }
+                first += unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(f)))));
+                last += unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(t)))));
+            }
+            if constexpr (OneSide) last = last > first ? last : first;
+            return range[a][first][last];
+#endif
         } else {
             unsigned first = 0, last = 0;
             for (int k = 0; k < P; ++k) {
@@ -231,8 +307,15 @@ struct Classifier {
             first = planes111 < l;
             last = planes111 <= h;
         }
+#ifdef __SSE__
+        // The comparisons' sign bits in one instruction each (movmskps).
+        const unsigned f = unsigned(__builtin_ia32_movmskps(Float4(first))) & 7u;
+        const unsigned t = unsigned(__builtin_ia32_movmskps(Float4(last))) & 7u;
+        return table111[f | t << 3];
+#else
         const Int4 bits = (first & Int4{1, 2, 4, 0}) | (last & Int4{8, 16, 32, 0});
         return table111[bits[0] | bits[1] | bits[2]];
+#endif
     }
     /// The same for any layout of planes.
     unsigned mask(const float lo[3], const float hi[3]) const {
@@ -251,18 +334,7 @@ struct Classifier {
 };
 
 
-/// A reference is a global triangle id; the `sah` rule marks with this bit the triangles that
-/// went down loose (not copied; their bounds are no longer clipped to the cell).
-constexpr uint32_t kLooseBit = 0x80000000u;
 
-/// A triangle reference during the build: its id (with kLooseBit) and its bounds, carried
-/// along so that classifying a node's triangles reads one array in order instead of the
-/// bounds of scattered ids (the build's cache misses). Plain floats: lists of them are
-/// allocated without being initialised first.
-struct Ref {
-    float lo[3], hi[3];  ///< the triangle's own bounds (not clipped)
-    uint32_t id;
-};
 
 /// Classifier::mask for the layout of planes of \p k, as a type (see withMask()).
 template <int PX, int PY, int PZ, bool OneSide> struct MaskOf {
@@ -343,13 +415,6 @@ __attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const
     return kept ? kept : mask;  // never lose a triangle to rounding
 }
 
-/// The ids of a list that becomes a leaf, without loose marks.
-std::vector<uint32_t> finish(const Ref *list, size_t n) {
-    std::vector<uint32_t> ids(n);
-    for (size_t i = 0; i < n; ++i) ids[i] = list[i].id & ~kLooseBit;
-    return ids;
-}
-
 /// The boxes a node's triangles are clipped to: its children's cells, and for loose triangles
 /// the node's box.
 struct Clips {
@@ -389,6 +454,14 @@ struct Gathered {
             hi[c] = max4(min4(rhi, clips.hi[k]), hi[c]);
         }
     }
+    /// add() for a reference that goes to child \p c alone.
+    void addOne(const Ref &r, int c, const Clips &clips) {
+        const Float4 rlo = load4(r.lo), rhi = load4(r.hi);
+        const int k = (r.id & kLooseBit) ? 8 : c;
+        ++counts[c];
+        lo[c] = min4(max4(rlo, clips.lo[k]), lo[c]);
+        hi[c] = max4(min4(rhi, clips.hi[k]), hi[c]);
+    }
     /// Add the sums of \p g, a later run (ties keep the earlier bound, as one pass would).
     void merge(const Gathered &g) {
         for (int c = 0; c < 8; ++c) {
@@ -397,9 +470,38 @@ struct Gathered {
             hi[c] = g.hi[c] > hi[c] ? g.hi[c] : hi[c];
         }
     }
+    /// The sums of two disjoint sets of references, each summed in order (\p a, \p b), as
+    /// one pass over their union in order gives them: the smaller (larger) bound, either
+    /// where they are the same float. False where that pass's bound depends on which came
+    /// first, a zero of each sign (equal, different bits): then the caller sums in one pass.
+    static bool combine(const Gathered &a, const Gathered &b, Gathered &out) {
+        const Int4 lanes = {-1, -1, -1, 0};  // the fourth lane is never used
+        Int4 ambiguous = {};
+        for (int c = 0; c < 8; ++c) {
+            Int4 alo, blo, ahi, bhi;
+            std::memcpy(&alo, &a.lo[c], sizeof alo);
+            std::memcpy(&blo, &b.lo[c], sizeof blo);
+            std::memcpy(&ahi, &a.hi[c], sizeof ahi);
+            std::memcpy(&bhi, &b.hi[c], sizeof bhi);
+            ambiguous |= ((a.lo[c] == b.lo[c]) & (alo != blo)) | ((a.hi[c] == b.hi[c]) & (ahi != bhi));
+            out.counts[c] = a.counts[c] + b.counts[c];
+            out.lo[c] = b.lo[c] < a.lo[c] ? b.lo[c] : a.lo[c];
+            out.hi[c] = b.hi[c] > a.hi[c] ? b.hi[c] : a.hi[c];
+        }
+        ambiguous &= lanes;
+        return !(ambiguous[0] | ambiguous[1] | ambiguous[2]);
+    }
     BoundingBox3f box(int c) const {
         return BoundingBox3f(Point3f(lo[c][0], lo[c][1], lo[c][2]), Point3f(hi[c][0], hi[c][1], hi[c][2]));
     }
+};
+
+/// A list of reference indices in a buffer owned elsewhere.
+struct Indices {
+    uint32_t *data = nullptr;
+    size_t count = 0;
+    const uint32_t *begin() const { return data; }
+    const uint32_t *end() const { return data + count; }
 };
 
 /// Split \p refs (the triangles touching \p cell, whose clipped bounds are \p box; a node at
@@ -420,8 +522,12 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     int depth = depthIn;
     OctreeNode::Pattern pattern{{0, 1, 2}};
     BoundingBox3f cells[8];
-    std::unique_ptr<uint8_t[]> masks(new uint8_t[n]);
+    // One block for the node's scratch lists: the indices of the straddlers (at most n) and
+    // each reference's mask.
+    std::unique_ptr<uint32_t[]> scratch(new uint32_t[n + (n + 3) / 4]);
+    uint8_t *masks = reinterpret_cast<uint8_t *>(scratch.get() + n);
     std::optional<Classifier> classifier;
+    Indices straddlers{scratch.get(), 0};  // the references whose bounding boxes straddle, in order
 
     // Which child cells a triangle touches: its bounding box against the cells (see
     // Classifier::oneSide for a box on a plane), refined by the SAT only for straddling
@@ -455,34 +561,148 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         for (size_t i = 0; i < n; ++i) g.add(ids[i], masks[i], clips);
         setGathered(g);
     };
+    // The sums of the references whose boxes lie in one child are kept apart from those of
+    // the straddlers: when some straddlers are kept or go down loose, only those are summed
+    // again (Gathered::combine; most of a node's references go to one child).
+    Gathered single;
+    auto regather = [&] {
+        Gathered multi, all;
+        const Clips clips(box, cells);
+        for (const uint32_t i : straddlers) multi.add(ids[i], masks[i], clips);
+        if (Gathered::combine(single, multi, all)) setGathered(all);
+        else gather();
+    };
+    // `sah`: when every triangle lies in one child, the cell shrinks to it (below). Where the
+    // triangles' own bounds (and the loose ones' centres) show that at once, the pass over
+    // them is skipped: a small object under a huge ground quad would otherwise be classified
+    // again at every level of empty space above it (the 400k tabletop: 37 % of all
+    // classifications). The bounds are gathered once, only when the node's clipped box lies
+    // in one child (they are a superset of it).
+    std::optional<std::array<float, 12>> hull;  // bounds' lo, hi; loose centres' lo, hi
+    bool anyTight = false, anyLoose = false;
+    auto soleChild = [&]() -> int {
+        if (!classifier->soleCell(box.min.data(), box.max.data())) return -1;
+        if (!hull) {
+            Float4 lo = Float4{} + Infinity, hi = Float4{} - Infinity;
+            Float4 clo = lo, chi = hi;
+            for (size_t i = 0; i < n; ++i) {
+                const Ref &r = ids[i];
+                const Float4 rlo = load4(r.lo), rhi = load4(r.hi);
+                if (r.id & kLooseBit) {
+                    // The centre exactly as slotOfCentre() computes it.
+                    const Float4 c = 0.5f * (rlo + rhi);
+                    clo = min4(c, clo);
+                    chi = max4(c, chi);
+                    anyLoose = true;
+                } else {
+                    lo = min4(rlo, lo);
+                    hi = max4(rhi, hi);
+                    anyTight = true;
+                }
+            }
+            hull.emplace();
+            for (int a = 0; a < 3; ++a) {
+                (*hull)[a] = lo[a];
+                (*hull)[3 + a] = hi[a];
+                (*hull)[6 + a] = clo[a];
+                (*hull)[9 + a] = chi[a];
+            }
+        }
+        int only = -1;
+        if (anyTight) {
+            const unsigned m = classifier->soleCell(hull->data(), hull->data() + 3);
+            if (!m) return -1;
+            only = __builtin_ctz(m);
+        }
+        if (anyLoose) {
+            const int lo = classifier->slotOfPoint(hull->data() + 6), hi = classifier->slotOfPoint(hull->data() + 9);
+            if (lo != hi || (only >= 0 && lo != only)) return -1;
+            only = lo;
+        }
+        return only;
+    };
     for (;;) {
         pattern = patternFor(in.rule, cell);
         for (int c = 0; c < 8; ++c) cells[c] = cellOf(cell, pattern, c);
         classifier.emplace(cell, pattern, cells, sah);
+        if (sah && depth + 1 < in.maxDepth) {
+            const int only = soleChild();
+            if (only >= 0) {
+                cell = cells[only];
+                ++depth;
+                continue;
+            }
+        }
         // Classification and gathering in one pass over the references (in blocks of 4096,
         // in parallel for large nodes; the blocks' sums are exact whatever their order).
         withMask(*classifier, [&](auto maskOf) {
             const Clips clips(box, cells);
-            auto run = [&](size_t begin, size_t end, Gathered &g) {
-                for (size_t i = begin; i < end; ++i) {
-                    // The corners of a triangle a few references ahead, in case the SAT needs
-                    // them: its cache misses were most of the classification's time.
-                    if (in.exact && i + kPrefetch < end)
-                        __builtin_prefetch(&in.vertices[ids[i + kPrefetch].id & ~kLooseBit]);
-                    g.add(ids[i], classifyOne(i, maskOf), clips);
+            // In blocks of kBlock: the bounding-box masks, summing the references that go to
+            // one child at once and prefetching the corners of those that straddle (the SAT's
+            // cache misses were most of the classification's time; the other triangles'
+            // corners are not needed), then the SAT for those and their sums. \p g sums the
+            // first kind, \p gm the second, whose indices go to \p multi.
+            auto run = [&](size_t begin, size_t end, Gathered &g, Gathered &gm, Indices &multi) {
+                uint32_t straddle[kBlock];
+                for (size_t b = begin; b < end; b += kBlock) {
+                    const size_t e = std::min(end, b + kBlock);
+                    size_t k = 0;
+                    for (size_t i = b; i < e; ++i) {
+                        const Ref &r = ids[i];
+                        unsigned mask;
+                        if (__builtin_expect(r.id & kLooseBit, 0)) {
+                            mask = 1u << classifier->slotOfCentre(r.lo, r.hi);
+                        } else {
+                            mask = maskOf(r);
+                            if (mask & (mask - 1)) {
+                                masks[i] = uint8_t(mask);
+                                if (in.exact) {
+                                    __builtin_prefetch(&in.vertices[r.id]);
+                                    straddle[k++] = uint32_t(i);
+                                } else {
+                                    gm.add(r, mask, clips);
+                                    multi.data[multi.count++] = uint32_t(i);
+                                }
+                                continue;
+                            }
+                        }
+                        masks[i] = uint8_t(mask);
+                        g.addOne(r, __builtin_ctz(mask), clips);
+                    }
+                    for (size_t j = 0; j < k; ++j) {
+                        const uint32_t i = straddle[j];
+                        const Ref &r = ids[i];
+                        const unsigned mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, masks[i]);
+                        masks[i] = uint8_t(mask);
+                        gm.add(r, mask, clips);
+                        multi.data[multi.count++] = i;
+                    }
                 }
             };
-            Gathered all;
+            Gathered multi, all;
+            single = Gathered();
+            straddlers.count = 0;
             if (n > 8 * kParallelRefs) {
-                std::vector<Gathered> parts((n + 4095) / 4096);
-                tbb::parallel_for(size_t(0), parts.size(), [&](size_t b) {
-                    run(4096 * b, std::min(n, 4096 * b + 4096), parts[b]);
+                // Block b lists its straddlers from index 4096 b on (it has at most 4096),
+                // then the lists close up in order.
+                const size_t blocks = (n + 4095) / 4096;
+                std::vector<Gathered> parts(2 * blocks);
+                std::vector<Indices> multis(blocks);
+                tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+                    multis[b] = {straddlers.data + 4096 * b, 0};
+                    run(4096 * b, std::min(n, 4096 * b + 4096), parts[2 * b], parts[2 * b + 1], multis[b]);
                 });
-                for (const Gathered &g : parts) all.merge(g);
+                for (size_t b = 0; b < blocks; ++b) {
+                    single.merge(parts[2 * b]);
+                    multi.merge(parts[2 * b + 1]);
+                    std::memmove(straddlers.data + straddlers.count, multis[b].data, sizeof(uint32_t) * multis[b].count);
+                    straddlers.count += multis[b].count;
+                }
             } else {
-                run(0, n, all);
+                run(0, n, single, multi, straddlers);
             }
-            setGathered(all);
+            if (Gathered::combine(single, multi, all)) setGathered(all);
+            else gather();
         });
         // `sah`: every triangle in one and the same child: the split would separate nothing,
         // so the cell shrinks to that child without a node (empty space costs no level of the
@@ -538,7 +758,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             size_t i;
         };
         std::vector<Candidate> candidates;
-        for (size_t i = 0; i < n; ++i) {
+        candidates.reserve(straddlers.count);
+        for (const uint32_t i : straddlers) {
             unsigned m = masks[i];
             if (!(m & (m - 1))) continue;
             double copies = 0.0;
@@ -578,7 +799,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                 keptBox.expandBy(BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]), Point3f(r.hi[0], r.hi[1], r.hi[2])));
                 masks[candidates[k].i] = 0;
             }
-            gather();
+            regather();
         }
     }
 
@@ -590,12 +811,12 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     if (double(sumDown + kept.size()) > budget) {
         if (!sah) return nullptr;
         // Over budget: the straddling triangles go down loose.
-        for (size_t i = 0; i < n; ++i)
-            if (masks[i] & (masks[i] - 1)) {
+        for (const uint32_t i : straddlers)
+            if (masks[i] & (masks[i] - 1)) {  // (not kept)
                 ids[i].id |= kLooseBit;
                 classify(i);
             }
-        gather();
+        regather();
         sumDown = down;
     }
     const size_t sum = sumDown + kept.size();
@@ -628,10 +849,17 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     {
         Ref *out[8];
         for (int c = 0; c < 8; ++c) out[c] = lists.get() + start[c];
-        for (size_t i = 0; i < n; ++i)
+        // Between two straddlers every reference goes to one child (its box lies in it); the
+        // straddlers go to all of theirs (none when kept).
+        size_t i = 0;
+        for (const uint32_t next : straddlers) {
+            for (; i < next; ++i) *out[__builtin_ctz(masks[i])]++ = ids[i];
             for (unsigned m = masks[i]; m; m &= m - 1) *out[__builtin_ctz(m)]++ = ids[i];
+            ++i;
+        }
+        for (; i < n; ++i) *out[__builtin_ctz(masks[i])]++ = ids[i];
     }
-    masks.reset();
+    scratch.reset();
 
     // Depth of each child: one level below, or for the seed's rule one more level for every
     // earlier sibling (its build passes `++ctr` to the children in turn, empty ones included).
@@ -645,7 +873,6 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             std::unique_ptr<TempNode> sub = split(in, cells[c], node->box[c], list, size, node->childDepth[c], share);
             if (sub) node->inner[c] = std::move(sub);
         }
-        if (!node->inner[c]) node->refs[c] = finish(list, size);
     };
     if (n > kParallelRefs) {
         tbb::task_group group;
@@ -653,6 +880,21 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         group.wait();
     } else {
         for (int c = 0; c < 8; ++c) buildChild(c);
+    }
+    // The leaves' ids, without loose marks, in one block for all the node's leaves.
+    size_t leafRefs = 0;
+    for (int c = 0; c < 8; ++c)
+        if (!node->inner[c]) leafRefs += counts[c];
+    if (leafRefs) {
+        node->leafIds.reset(new uint32_t[leafRefs]);
+        uint32_t *out = node->leafIds.get();
+        for (int c = 0; c < 8; ++c) {
+            if (node->inner[c] || !counts[c]) continue;
+            const Ref *list = lists.get() + start[c];
+            for (size_t i = 0; i < counts[c]; ++i) out[i] = list[i].id & ~kLooseBit;
+            node->refs[c] = {out, counts[c]};
+            out += counts[c];
+        }
     }
     summarize(*node);
     return node;
@@ -664,20 +906,11 @@ OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3
 
 BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c) { return cellOf(cell, p, c); }
 
-std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
-                                    const std::vector<uint32_t> &refs) {
-    if (refs.size() < in.leafSize || in.maxDepth <= 0) return nullptr;
+std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box, Ref *refs,
+                                    size_t n) {
+    if (n < in.leafSize || in.maxDepth <= 0) return nullptr;
     double perTriangle = in.rule == Rule::Sah ? kSahRefBudget : kRefBudget;
-    // Each triangle's bounds, as buildImpl() computes them for the scene's box (no array of
-    // them: that would be the build's largest allocation after the corners).
-    std::unique_ptr<Ref[]> ids(new Ref[refs.size()]);
-    for (size_t i = 0; i < refs.size(); ++i) {
-        const auto &v = in.vertices[refs[i]];
-        BoundingBox3f b;
-        for (int k = 0; k < 3; ++k) b.expandBy(v[k]);
-        ids[i] = {{b.min.x(), b.min.y(), b.min.z()}, {b.max.x(), b.max.y(), b.max.z()}, refs[i]};
-    }
-    return split(in, cell, box, ids.get(), refs.size(), 0, perTriangle * double(refs.size()));
+    return split(in, cell, box, refs, n, 0, perTriangle * double(n));
 }
 
 } // namespace nori::octree_build

@@ -21,12 +21,35 @@ struct Input {
     bool exact;  ///< separating-axis test for triangles whose box straddles a midplane
 };
 
+/// A reference is a global triangle id; the `sah` rule marks with this bit the triangles that
+/// went down loose (not copied; their bounds are no longer clipped to the cell).
+constexpr uint32_t kLooseBit = 0x80000000u;
+
+/// \brief A triangle reference during the build: its id (with a mark for the `sah` rule's
+/// loose triangles) and its bounds, carried along so that classifying a node's triangles reads
+/// one array in order instead of the bounds of scattered ids (the build's cache misses). Plain
+/// floats: arrays of them are allocated without being initialised first.
+struct Ref {
+    float lo[3], hi[3];  ///< the triangle's own bounds (not clipped)
+    uint32_t id;
+};
+
+/// \brief A leaf's triangle ids (global), in storage its node owns.
+struct LeafIds {
+    const uint32_t *ids = nullptr;
+    size_t count = 0;
+    const uint32_t *data() const { return ids; }
+    size_t size() const { return count; }
+    bool empty() const { return count == 0; }
+};
+
 /// \brief An inner node of the temporary tree. Child slot c (see OctreeNode::Pattern) is an
 /// inner node (inner[c]), a leaf (refs[c] non-empty) or empty.
 struct TempNode {
     BoundingBox3f box[8];  ///< tight child boxes
     std::unique_ptr<TempNode> inner[8];
-    std::vector<uint32_t> refs[8];
+    LeafIds refs[8];
+    std::unique_ptr<uint32_t[]> leafIds;  ///< the ids of all its leaves, one block (refs[c] point into it)
     std::vector<uint32_t> kept;  ///< large triangles tested at this node
     BoundingBox3f keptBox;       ///< their bounds
     OctreeNode::Pattern pattern{{0, 1, 2}};
@@ -41,9 +64,10 @@ struct TempNode {
 OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3f &cell);
 BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c);
 
-/// \brief Subdivide \p cell (holding the triangles \p refs, whose bounds clipped to the cell are \p box),
-/// the root at depth 0. Returns null when the root is best left a single leaf.
-std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box,
-                                    const std::vector<uint32_t> &refs);
+/// \brief Subdivide \p cell (holding the \p n triangles \p refs, whose bounds clipped to the
+/// cell are \p box; the array is reordered and overwritten), the root at depth 0. Returns null
+/// when the root is best left a single leaf.
+std::unique_ptr<TempNode> subdivide(const Input &in, const BoundingBox3f &cell, const BoundingBox3f &box, Ref *refs,
+                                    size_t n);
 
 } // namespace nori::octree_build

@@ -84,25 +84,28 @@ void OctreeAccel::buildImpl() {
 
     // Gather corners and bounds of every triangle; triangles with a non-finite corner can
     // never be hit meaningfully and are left out. (The corners are appended: no pass that
-    // zeroes them first.)
+    // zeroes them first; the references are plain data, not initialised either.)
     std::vector<std::array<Point3f, 3>> vertices;
     vertices.reserve(total);
     std::vector<float> areas(total, 0.0f);  // twice each triangle's area, for the `sah` rule
-    std::vector<uint32_t> all;
-    all.reserve(total);
+    std::unique_ptr<octree_build::Ref[]> refs(new octree_build::Ref[total]);
+    size_t count = 0;
     BoundingBox3f sceneBox;
     for (size_t m = 0; m < m_meshes.size(); ++m) {
         const Mesh *mesh = m_meshes[m];
+        const Point3f *positions = mesh->positions().data();
+        const std::array<uint32_t, 3> *faces = mesh->faces().data();
         for (uint32_t f = 0; f < mesh->triangleCount(); ++f) {
             const uint32_t prim = m_offsets[m] + f;  // == vertices.size()
-            const std::array<Point3f, 3> v{mesh->vertex(f, 0), mesh->vertex(f, 1), mesh->vertex(f, 2)};
+            const std::array<Point3f, 3> v{positions[faces[f][0]], positions[faces[f][1]], positions[faces[f][2]]};
             vertices.push_back(v);
             if (!(v[0].allFinite() && v[1].allFinite() && v[2].allFinite())) continue;
-            BoundingBox3f bounds;  // (octree_build::subdivide computes the same again)
+            BoundingBox3f bounds;
             for (int k = 0; k < 3; ++k) bounds.expandBy(v[k]);
             areas[prim] = (v[1] - v[0]).cross(v[2] - v[0]).norm();
             sceneBox.expandBy(bounds);
-            all.push_back(prim);
+            refs[count++] = {{bounds.min.x(), bounds.min.y(), bounds.min.z()},
+                             {bounds.max.x(), bounds.max.y(), bounds.max.z()}, prim};
         }
     }
 
@@ -119,17 +122,20 @@ void OctreeAccel::buildImpl() {
     }
 
     octree_build::Input in{vertices, areas, m_buildRule, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact};
-    std::unique_ptr<TempNode> root = octree_build::subdivide(in, cell, sceneBox, all);
+    std::unique_ptr<TempNode> root = octree_build::subdivide(in, cell, sceneBox, refs.get(), count);
     bool rootIsLeaf = !root;
     if (rootIsLeaf) {
-        // The root node then holds a single leaf child with every triangle.
+        // The root node then holds a single leaf child with every triangle (in their order;
+        // subdivide() may have marked some loose).
         root = std::make_unique<TempNode>();
-        if (!all.empty()) root->box[0] = sceneBox;
-        root->subtreeRefs = all.size();
-        root->subtreeWords = all.empty() ? 0 : TriangleStore::leafWords(uint32_t(all.size()));
-        root->refs[0] = std::move(all);
+        if (count) root->box[0] = sceneBox;
+        root->subtreeRefs = count;
+        root->subtreeWords = count ? TriangleStore::leafWords(uint32_t(count)) : 0;
+        root->leafIds.reset(new uint32_t[count]);
+        for (size_t i = 0; i < count; ++i) root->leafIds[i] = refs[i].id & ~octree_build::kLooseBit;
+        root->refs[0] = {root->leafIds.get(), count};
     }
-    std::vector<uint32_t>().swap(all);
+    refs.reset();
     std::vector<float>().swap(areas);
 
     if (root->subtreeWords >= size_t(UINT32_MAX))

@@ -66,8 +66,9 @@ TriangleRay::TriangleRay(const Ray3f &ray) {
 
 void TriangleStore::reset(Intersector kind, size_t words) {
     m_kind = kind;
-    m_data.assign(words, 0.0f);
+    m_data.clear();
     m_data.shrink_to_fit();
+    m_data.resize(words);  // uninitialised (see m_data), exactly `words` of capacity
 }
 
 namespace {
