@@ -64,8 +64,10 @@ struct OctreeKept {
 /// against the midplanes by their bounding boxes, the separating-axis test only for those that
 /// straddle; children are built as parallel TBB tasks. The `sah` rule (default) makes the
 /// eight children by three bisections of the longest side (so cells stay near-cubic on flat
-/// or long scenes), keeps triangles that would be copied into many children in the node
-/// itself, and makes a leaf where a surface-area cost model says splitting no longer pays.
+/// or long scenes) unless triangles span those planes (a city's walls cross its horizontal
+/// planes) and a sampled surface-area estimate prefers bisections that copy fewer of them,
+/// keeps triangles that would be copied into many children in the node itself, and makes a
+/// leaf where a surface-area cost model says splitting no longer pays.
 /// `count` is the octree of issue 3 (x, y, z octants, leaf below leafSize); `seed` is the seed
 /// report's rule (each later sibling counts one level deeper). Every rule stops at maxDepth and
 /// at a budget of references per triangle for any input: 8 for `count` and `seed`, 1.5 for

@@ -63,6 +63,10 @@ struct TempNode {
 /// OctreeNode::Pattern), and the cell of child slot \p c.
 OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3f &cell);
 BoundingBox3f childCell(const BoundingBox3f &cell, const OctreeNode::Pattern &p, int c);
+/// \brief The bisections the `sah` rule chooses for a node of \p cell whose triangles have
+/// the bounding boxes \p bounds and fill \p box (other rules: splitPattern(rule, cell)).
+OctreeNode::Pattern splitPattern(OctreeAccel::BuildRule rule, const BoundingBox3f &cell, const BoundingBox3f &box,
+                                 const std::vector<BoundingBox3f> &bounds);
 
 /// \brief Subdivide \p cell (holding the \p n triangles \p refs, whose bounds clipped to the
 /// cell are \p box; the array is reordered and overwritten), the root at depth 0. Returns null
