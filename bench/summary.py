@@ -5,7 +5,11 @@ default run against Embree's default mode (same rays, same run): ray rates as oc
 against Embree robust with Embree default's own in brackets, and the exact referee's count of wrong
 answers on the disputed rays (octree's, Embree default's in brackets).
 
-usage: bench/summary.py RESULT.json [RESULT.json ...] [--names NAME,NAME,...]
+With --floors, a figure below issue 9's floor is marked ✗ (primary >= 0.7, diffuse >= 0.6,
+shadow >= 0.7, build <= 1, bytes <= 1, mismatches against robust <= Embree default's own) and a
+last line counts the rows that meet each floor.
+
+usage: bench/summary.py RESULT.json [RESULT.json ...] [--names NAME,NAME,...] [--floors]
 """
 import json
 import sys
@@ -26,17 +30,34 @@ def default_run(result):
     return (marked or runs or [None])[0]
 
 
-def row(result, name):
+FLOORS = {"primary": 0.7, "diffuse": 0.6, "shadow": 0.7}
+FLOOR_NAMES = ["primary", "diffuse", "shadow", "build", "bytes", "mismatches"]
+
+
+def row(result, name, floors=False, met=None):
     run = default_run(result)
     if run is None:
         return None
     e = result["embree"]
     sets = ["primary", "diffuse", "shadow"]
-    ratios = ["%.2f×" % run[s]["ratio_vs_embree"] for s in sets]
-    build = "%.2f×" % (run["build_ms"] / e["build_ms"]) if e["build_ms"] > 0 else "–"
-    size = "%.2f×" % (run["bytes"] / e["bytes"]) if e.get("bytes") and run.get("bytes") else "–"
+    ok = {}
+    ratios = []
+    for s in sets:
+        ok[s] = run[s]["ratio_vs_embree"] >= FLOORS[s]
+        ratios.append("%.2f×" % run[s]["ratio_vs_embree"] + ("" if ok[s] or not floors else " ✗"))
+    b = run["build_ms"] / e["build_ms"] if e["build_ms"] > 0 else None
+    ok["build"] = b is None or b <= 1.0
+    build = ("%.2f×" % b if b is not None else "–") + ("" if ok["build"] or not floors else " ✗")
+    z = run["bytes"] / e["bytes"] if e.get("bytes") and run.get("bytes") else None
+    ok["bytes"] = z is None or z <= 1.0
+    size = ("%.2f×" % z if z is not None else "–") + ("" if ok["bytes"] or not floors else " ✗")
+    ok["mismatches"] = all(run[s]["mismatches"] <= e[s]["mismatches"] for s in sets)
     mism = "/".join(str(run[s]["mismatches"]) for s in sets)
     own = "/".join(str(e[s]["mismatches"]) for s in sets)
+    mark = "" if ok["mismatches"] or not floors else " ✗"
+    if met is not None:
+        for k in FLOOR_NAMES:
+            met[k] = met.get(k, 0) + (1 if ok[k] else 0)
     # Exact referee on the disputed rays (octree or Embree default differs from robust).
     if all("exact_wrong" in run[s] for s in sets):
         exact = "%s (%s)" % ("/".join(str(run[s]["exact_wrong"]) for s in sets),
@@ -45,7 +66,7 @@ def row(result, name):
         exact = "–"
     tris = result["triangles"]
     tris = "%dk" % round(tris / 1000) if tris >= 1000 else str(tris)
-    return "| %s | %s | %s | %s | %s | %s (%s) | %s |" % (name, tris, " | ".join(ratios), build, size, mism, own, exact)
+    return "| %s | %s | %s | %s | %s | %s (%s)%s | %s |" % (name, tris, " | ".join(ratios), build, size, mism, own, mark, exact)
 
 
 def main(argv):
@@ -57,15 +78,20 @@ def main(argv):
     if not argv:
         print(__doc__, file=sys.stderr)
         return 2
+    floors = "--floors" in argv
+    argv = [a for a in argv if a != "--floors"]
     results = load(argv)
+    met = {}
     print("| scene | tris | primary | diffuse | shadow | build | bytes | mismatches p/d/s (Embree default's own) "
           "| exact errors p/d/s (Embree default's) |")
     print("|---|---:|---:|---:|---:|---:|---:|---|---|")
     for k, result in enumerate(results):
         name = names[k] if names and k < len(names) else result["mesh"]
-        line = row(result, name)
+        line = row(result, name, floors, met)
         if line:
             print(line)
+    if floors:
+        print("\nFloors met, of %d rows: " % len(results) + ", ".join("%s %d" % (k, met.get(k, 0)) for k in FLOOR_NAMES))
     print("\nprimary/diffuse/shadow: octree rays/s over Embree default's, interleaved (> 1: faster than Embree); "
           "build, bytes: octree over Embree (< 1: less); mismatches: against Embree robust; exact errors: "
           "answers that are not the exact closest hit (decided in double on the triangles the answers name) "
