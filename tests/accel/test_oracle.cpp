@@ -2,7 +2,8 @@
 /// \brief Oracle tests: every exact octree traversal x intersector agrees with Embree's robust
 /// mode, up to the disagreements the judge explains (tests/support/oracle_judge.h: tie, edge,
 /// range), on the shared meshes (over a million rays each), on the generated scenes of every
-/// shape (scenes/generators) and on Nori's pa5 scenes (cbox, table, veach_mi; geometry and
+/// shape (scenes/generators; each at its default seed and size and again at seed 5 and a third
+/// of the size) and on Nori's pa5 scenes (cbox, table, veach_mi; geometry and
 /// camera only), for primary, diffuse and shadow rays.
 #include <gtest/gtest.h>
 #include <nori/objloader.h>
