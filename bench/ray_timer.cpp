@@ -3,21 +3,14 @@
 #include "ray_timer.h"
 #include "embree_oracle.h"
 #include <nori/accel.h>
+#include <nori/cpu_clock.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <chrono>
-#include <ctime>
 
 namespace nori::bench {
 
 namespace {
-/// Milliseconds of the calling thread's CPU time.
-double threadCpuMs() {
-    timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
-}
-
 template <typename Tracer>
 inline void traceRange(const Tracer &tracer, const RaySet &set, float *answers, size_t begin, size_t end) {
     const Ray3f *rays = set.rays.data();
@@ -37,9 +30,9 @@ double RayTimer::trace(const Tracer &tracer, const RaySet &set, std::vector<floa
     answers.assign(set.size(), -1.0f);  // touched before timing so page faults are not timed
     float *out = answers.data();
     if (m_cpuTime) {
-        const double start = threadCpuMs();
+        const double start = threadCpuMilliseconds();
         traceRange(tracer, set, out, 0, set.size());
-        return threadCpuMs() - start;
+        return threadCpuMilliseconds() - start;
     }
     auto start = std::chrono::steady_clock::now();
     if (m_threads == 1) {

@@ -3,7 +3,7 @@
 #include <nori/accel.h>
 #include <algorithm>
 #include <chrono>
-#include <ctime>
+#include <nori/cpu_clock.h>
 
 namespace nori {
 
@@ -15,20 +15,12 @@ void Accel::addMesh(const Mesh *mesh) {
     m_bbox.expandBy(mesh->bbox());
 }
 
-namespace {
-double threadCpuMs() {
-    timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
-}
-} // namespace
-
 void Accel::build() {
-    const double cpuStart = threadCpuMs();
+    const double cpuStart = threadCpuMilliseconds();
     auto start = std::chrono::steady_clock::now();
     buildImpl();
     m_buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    m_buildCpuMs = threadCpuMs() - cpuStart;
+    m_buildCpuMs = threadCpuMilliseconds() - cpuStart;
 }
 
 std::pair<const Mesh *, uint32_t> Accel::locate(uint32_t prim) const {

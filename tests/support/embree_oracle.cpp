@@ -4,17 +4,9 @@
 #include <embree3/rtcore.h>
 #include <chrono>
 #include <cstring>
-#include <ctime>
+#include <nori/cpu_clock.h>
 
 namespace nori {
-
-namespace {
-double threadCpuMs() {
-    timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
-}
-} // namespace
 
 bool EmbreeOracle::memoryMonitor(void *self, ssize_t bytes, bool) {
     static_cast<EmbreeOracle *>(self)->m_bytes += bytes;
@@ -27,7 +19,7 @@ EmbreeOracle::EmbreeOracle(const std::vector<const Mesh *> &meshes, const Option
     if (!m_device) throw NoriException("cannot create an Embree device ({})", int(rtcGetDeviceError(nullptr)));
     rtcSetDeviceMemoryMonitorFunction(m_device, &EmbreeOracle::memoryMonitor, this);
 
-    const double cpuStart = threadCpuMs();
+    const double cpuStart = threadCpuMilliseconds();
     auto start = std::chrono::steady_clock::now();
     m_scene = rtcNewScene(m_device);
     if (options.robust) rtcSetSceneFlags(m_scene, RTC_SCENE_FLAG_ROBUST);
@@ -49,7 +41,7 @@ EmbreeOracle::EmbreeOracle(const std::vector<const Mesh *> &meshes, const Option
     }
     rtcCommitScene(m_scene);
     m_buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    m_buildCpuMs = threadCpuMs() - cpuStart;
+    m_buildCpuMs = threadCpuMilliseconds() - cpuStart;
     m_bytesAfterBuild = m_bytes;
 }
 
