@@ -640,7 +640,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     BoundingBox3f cells[8];
     // One block for the node's scratch lists: the indices of the straddlers (at most n) and
     // each reference's mask.
-    std::unique_ptr<uint32_t[]> scratch(new uint32_t[n + (n + 3) / 4]);
+    LargeArray<uint32_t> scratch = makeLargeArray<uint32_t>(n + (n + 3) / 4);
     uint8_t *masks = reinterpret_cast<uint8_t *>(scratch.get() + n);
     std::optional<Classifier> classifier;
     Indices straddlers{scratch.get(), 0};  // the references whose bounding boxes straddle, in order
@@ -961,7 +961,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         start[c + 1] = start[c] + counts[c];
         node->box[c] = boxes[c];
     }
-    std::unique_ptr<Ref[]> lists(new Ref[start[8]]);
+    LargeArray<Ref> lists = makeLargeArray<Ref>(start[8]);
     {
         Ref *out[8];
         for (int c = 0; c < 8; ++c) out[c] = lists.get() + start[c];
@@ -1002,7 +1002,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     for (int c = 0; c < 8; ++c)
         if (!node->inner[c]) leafRefs += counts[c];
     if (leafRefs) {
-        node->leafIds.reset(new uint32_t[leafRefs]);
+        node->leafIds = makeLargeArray<uint32_t>(leafRefs);
         uint32_t *out = node->leafIds.get();
         for (int c = 0; c < 8; ++c) {
             if (node->inner[c] || !counts[c]) continue;

@@ -4,6 +4,7 @@
 /// store (octree_layout.cpp).
 #pragma once
 
+#include "huge_pages.h"
 #include "octree.h"
 #include <array>
 #include <memory>
@@ -13,8 +14,8 @@ namespace nori::octree_build {
 
 /// \brief What the subdivision reads.
 struct Input {
-    const std::vector<std::array<Point3f, 3>> &vertices;  ///< corners of every global triangle
-    const std::vector<float> &areas;                       ///< twice the area of every global triangle
+    const std::array<Point3f, 3> *vertices;  ///< corners of every global triangle
+    const float *areas;                       ///< twice the area of every global triangle
     OctreeAccel::BuildRule rule;
     int maxDepth;
     size_t leafSize;
@@ -49,7 +50,7 @@ struct TempNode {
     BoundingBox3f box[8];  ///< tight child boxes
     std::unique_ptr<TempNode> inner[8];
     LeafIds refs[8];
-    std::unique_ptr<uint32_t[]> leafIds;  ///< the ids of all its leaves, one block (refs[c] point into it)
+    LargeArray<uint32_t> leafIds;  ///< the ids of all its leaves, one block (refs[c] point into it)
     std::vector<uint32_t> kept;  ///< large triangles tested at this node
     BoundingBox3f keptBox;       ///< their bounds
     OctreeNode::Pattern pattern{{0, 1, 2}};

@@ -21,7 +21,7 @@ struct Layout {
     std::vector<OctreeNode> &nodes;
     std::vector<OctreeKept> &kept;
     TriangleStore &store;
-    const std::vector<std::array<Point3f, 3>> &vertices;
+    const std::array<Point3f, 3> *vertices;
 };
 
 /// The reference to \p node that its parent stores (count field).
@@ -85,10 +85,12 @@ void OctreeAccel::buildImpl() {
     // Gather corners and bounds of every triangle; triangles with a non-finite corner can
     // never be hit meaningfully and are left out. (The corners are appended: no pass that
     // zeroes them first; the references are plain data, not initialised either.)
-    std::vector<std::array<Point3f, 3>> vertices;
+    // (The large arrays on huge pages: see allocateLarge().)
+    std::vector<std::array<Point3f, 3>, HugePageAllocator<std::array<Point3f, 3>>> vertices;
     vertices.reserve(total);
-    std::vector<float> areas(total, 0.0f);  // twice each triangle's area, for the `sah` rule
-    std::unique_ptr<octree_build::Ref[]> refs(new octree_build::Ref[total]);
+    // twice each triangle's area, for the `sah` rule
+    std::vector<float, HugePageAllocator<float>> areas(total, 0.0f);
+    LargeArray<octree_build::Ref> refs = makeLargeArray<octree_build::Ref>(total);
     size_t count = 0;
     BoundingBox3f sceneBox;
     for (size_t m = 0; m < m_meshes.size(); ++m) {
@@ -121,7 +123,7 @@ void OctreeAccel::buildImpl() {
         }
     }
 
-    octree_build::Input in{vertices, areas, m_buildRule, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact};
+    octree_build::Input in{vertices.data(), areas.data(), m_buildRule, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact};
     std::unique_ptr<TempNode> root = octree_build::subdivide(in, cell, sceneBox, refs.get(), count);
     bool rootIsLeaf = !root;
     if (rootIsLeaf) {
@@ -131,12 +133,12 @@ void OctreeAccel::buildImpl() {
         if (count) root->box[0] = sceneBox;
         root->subtreeRefs = count;
         root->subtreeWords = count ? TriangleStore::leafWords(uint32_t(count)) : 0;
-        root->leafIds.reset(new uint32_t[count]);
+        root->leafIds = makeLargeArray<uint32_t>(count);
         for (size_t i = 0; i < count; ++i) root->leafIds[i] = refs[i].id & ~octree_build::kLooseBit;
         root->refs[0] = {root->leafIds.get(), count};
     }
     refs.reset();
-    std::vector<float>().swap(areas);
+    decltype(areas)().swap(areas);
 
     if (root->subtreeWords >= size_t(UINT32_MAX))
         throw NoriException("octree: the scene needs {} triangle references, too many for 32-bit offsets",
@@ -147,7 +149,7 @@ void OctreeAccel::buildImpl() {
     m_kept.shrink_to_fit();
     m_rootCount = innerCount(*root);
     m_triangles.reset(m_intersector, root->subtreeWords);
-    flatten(*root, 0, 0, Layout{m_nodes, m_kept, m_triangles, vertices});
+    flatten(*root, 0, 0, Layout{m_nodes, m_kept, m_triangles, vertices.data()});
 
     // Statistics over the temporary tree (serial; a few ten thousand nodes).
     m_stats.refs = root->subtreeRefs;

@@ -93,8 +93,7 @@ void orderChunks(Keyed *items, uint32_t begin, uint32_t end) {
 }
 } // namespace
 
-void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
-                            const std::vector<std::array<Point3f, 3>> &vertices) {
+void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n, const std::array<Point3f, 3> *vertices) {
     constexpr uint32_t kAhead = 8;  // corners prefetched this many triangles ahead (scattered ids)
     if (n == 0) return;  // an empty leaf has no block (and an empty store no data to copy into)
     float *rows = m_data.data() + offset;

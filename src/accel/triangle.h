@@ -11,6 +11,7 @@
 #pragma once
 
 #include <nori/accel.h>
+#include "huge_pages.h"
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -80,7 +81,11 @@ public:
     void reset(Intersector kind, size_t words);
     /// \brief Write a leaf at word \p offset from the global ids \p prims (thread-safe for
     /// disjoint leaves). \p vertices holds the three corners of every global triangle.
-    void setLeaf(size_t offset, const uint32_t *prims, uint32_t n, const std::vector<std::array<Point3f, 3>> &vertices);
+    void setLeaf(size_t offset, const uint32_t *prims, uint32_t n, const std::vector<std::array<Point3f, 3>> &vertices) {
+        setLeaf(offset, prims, n, vertices.data());
+    }
+    /// \brief The same with the corners in any array (indexed by global id).
+    void setLeaf(size_t offset, const uint32_t *prims, uint32_t n, const std::array<Point3f, 3> *vertices);
 
     /// \brief Closest hit among the leaf's triangles with t in [ray.mint, best.t]; a hit at
     /// exactly best.t wins only with a lower triangle id (deterministic ties). Updates \p best.
@@ -115,21 +120,10 @@ public:
 
 private:
     Intersector m_kind = Intersector::Watertight;
-    /// std::allocator whose resize() leaves new elements uninitialised: setLeaf() writes every
-    /// word of the store, so filling it with zeros first only cost a pass over it (3 % of the
-    /// octree's build).
-    template <typename T> struct Uninitialised : std::allocator<T> {
-        template <typename U> struct rebind {
-            using other = Uninitialised<U>;
-        };
-        Uninitialised() = default;
-        template <typename U> Uninitialised(const Uninitialised<U> &) {}
-        template <typename U> void construct(U *p) noexcept { ::new (static_cast<void *>(p)) U; }
-        template <typename U, typename... Args> void construct(U *p, Args &&...args) {
-            ::new (static_cast<void *>(p)) U(std::forward<Args>(args)...);
-        }
-    };
-    std::vector<float, Uninitialised<float>> m_data;  ///< leaf blocks (ids stored as their bit patterns)
+    /// resize() leaves the words uninitialised: setLeaf() writes every word of the store, so
+    /// filling it with zeros first only cost a pass over it (3 % of the octree's build); on huge
+    /// pages (allocateLarge()).
+    std::vector<float, HugePageAllocator<float, false>> m_data;  ///< leaf blocks (ids stored as their bit patterns)
 };
 
 } // namespace nori
