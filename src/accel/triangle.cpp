@@ -161,7 +161,6 @@ struct Step {
     VFloat<L> t, u, v;
     VMask<L> hit;
     VMask<L> known{};  ///< for the tests: t from exactPlaneT, crossing known inside (test skipped)
-    VMask<L> plane{};  ///< for the tests: t from floatPlaneT
 };
 
 /// Scale of the problem for the t error estimates, in units of t: |d|_inf = |d[kz]|, 1 / |d|_inf
@@ -221,6 +220,21 @@ template <int L>
             out[j] = std::numeric_limits<float>::quiet_NaN();
             continue;
         }
+        if (bits(inside) >> j & 1u) {
+            // An axis-aligned triangle (a floor, a wall: the huge triangles that come here most)
+            // lies in the plane x_a = p0_a: t = (p0_a - o_a) / d_a, a difference of floats
+            // (exact in double up to a relative 2^-53) and one division, instead of the normal
+            // and two dot products below. The exact t is the same; its rounding may differ by
+            // an ulp of double.
+            const int a = c[0] == c[3 * s] && c[0] == c[6 * s]           ? 0
+                          : c[s] == c[4 * s] && c[s] == c[7 * s]         ? 1
+                          : c[2 * s] == c[5 * s] && c[2 * s] == c[8 * s] ? 2
+                                                                         : -1;
+            if (a >= 0 && r.d[a] != 0.0f) {
+                out[j] = signedFloat((double(c[size_t(a) * s]) - double(r.o[a])) / double(r.d[a]));
+                continue;
+            }
+        }
         const double p0x = c[0], p0y = c[s], p0z = c[2 * s];
         const double e1[3] = {c[3 * s] - p0x, c[4 * s] - p0y, c[5 * s] - p0z};
         const double e2[3] = {c[6 * s] - p0x, c[7 * s] - p0y, c[8 * s] - p0z};
@@ -252,89 +266,6 @@ template <int L>
         if (s1 >= -tol && s2 >= -tol && nn - s1 - s2 >= -tol) out[j] = signedFloat(te);
     }
     return VFloat<L>::loadu(out);
-}
-
-/// The plane equation t = n.(p0 - o) / (n.d), n = (p1 - p0) x (p2 - p0), in float, for the
-/// lanes of \p redo, with a proven bound on its rounding error: where the bound clears 2^-19 of
-/// the problem's scale (needsExactT's tolerance), those lanes of \p t take it and the returned
-/// mask holds them; the others are left to exactPlaneT.
-///
-/// Conditioning: the watertight t weighs the corners' depths by barycentrics whose errors scale
-/// with the corners' distance from the origin, so on a triangle far larger than the hit distance
-/// (a ground quad seen from eye height) it is off by more than the tolerance. The plane
-/// equation's error scales instead with the error of n times |p0 - o|: n's components are
-/// differences of two products, each within a few ulps of their magnitudes' sum m_k, and a
-/// component whose products are exactly zero (an axis-aligned plane: a floor, a wall) carries no
-/// error at all, so there t is good to ~16 ulps however large the triangle.
-///
-/// Bound (standard model fl(a op b) = (a op b)(1 + e) + h, |e| <= u = 2^-24, |h| <= 2^-150 for
-/// products and quotients only; this file has no FMA): each edge component rounds once, so
-/// |n_k - N_k| <= 4.0001u m_k + 2^-149 against the exact normal N; w = p0 - o rounds once and
-/// the dot products add 3u of their terms' magnitudes, so num = n.w lies within 8.01u Bn of N.W
-/// and den = n.d within 8.01u Bd of N.d, where Bn = sum (m_k + 2^-124) |w_k| + 2^-100 and Bd
-/// likewise with |d_k| (the floors cover the underflows; evaluating Bn, Bd in float loses at
-/// most 4.1u of them). Where 2^-14 Bd < |den| (so that den's error is below |den| / 127: not a
-/// grazing ray), num / den lies within 1.008 (|num - N.W| + |t| |den - N.d|) / |den| of the
-/// exact t, and t = fl(num / den) within 8.09u (Bn + |t| Bd) / |den| + u |t| (+ 2^-149). The
-/// lanes where 9u (Bn + |t| Bd) / |den| (9u: margin for the bound's own rounding) is at most
-/// 31u |t| + 32u |o|_inf / |d|_inf have a t within 2^-19 of the scale. A NaN or infinity
-/// anywhere fails the comparisons: those lanes go to the double path.
-template <int L>
-struct PlaneT {
-    VFloat<L> t;
-    VMask<L> ok;
-};
-template <int L>
-[[gnu::always_inline]] inline PlaneT<L> floatPlaneT(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
-                                        float oScale, VFloat<L> t) {
-    using F = VFloat<L>;
-    const F p0x = loadRow(rows, n, 0, i, redo), p0y = loadRow(rows, n, 1, i, redo), p0z = loadRow(rows, n, 2, i, redo);
-    const F e1x = loadRow(rows, n, 3, i, redo) - p0x, e1y = loadRow(rows, n, 4, i, redo) - p0y,
-            e1z = loadRow(rows, n, 5, i, redo) - p0z;
-    const F e2x = loadRow(rows, n, 6, i, redo) - p0x, e2y = loadRow(rows, n, 7, i, redo) - p0y,
-            e2z = loadRow(rows, n, 8, i, redo) - p0z;
-    const F ax = e1y * e2z, bx = e1z * e2y, ay = e1z * e2x, by = e1x * e2z, az = e1x * e2y, bz = e1y * e2x;
-    const F nx = ax - bx, ny = ay - by, nz = az - bz;
-    const F floor(0x1p-124f);
-    const F mx = (abs(ax) + abs(bx)) + floor, my = (abs(ay) + abs(by)) + floor, mz = (abs(az) + abs(bz)) + floor;
-    const F wx = p0x - r.o[0], wy = p0y - r.o[1], wz = p0z - r.o[2];
-    const F num = (nx * wx + ny * wy) + nz * wz;
-    const F den = (nx * F(r.d[0]) + ny * F(r.d[1])) + nz * F(r.d[2]);
-    const F bn = ((mx * abs(wx) + my * abs(wy)) + mz * abs(wz)) + F(0x1p-100f);
-    const F bd = ((mx * F(std::abs(r.d[0])) + my * F(std::abs(r.d[1]))) + mz * F(std::abs(r.d[2]))) + F(0x1p-100f);
-    const F tp = num / den, aden = abs(den);
-    const F err = F(0x1.2p-21f) * ((bn + abs(tp) * bd) / aden);
-    const VMask<L> ok = redo & (err <= F(0x1.fp-20f) * abs(tp) + F(0x1p-19f * oScale)) & (F(0x1p-14f) * bd < aden);
-    return {select(ok, tp, t), ok};
-}
-
-template <int L>
-struct RedoneT {
-    VFloat<L> t;
-    VMask<L> plane;  ///< the lanes whose t came from floatPlaneT
-};
-
-/// t of the lanes of \p redo again: from the plane equation in float where its error bound
-/// allows (huge axis-aligned floors and walls: the common case), else in double
-/// (exactPlaneT). Out of line, one call site in the kernel, so that the common path keeps its
-/// values in registers.
-template <int L>
-[[gnu::noinline]] RedoneT<L> redoT(VMask<L> redo, VMask<L> strict, const TriangleRay &r, const float *rows, uint32_t n,
-                                   uint32_t i, VFloat<L> t, float oScale, uint32_t skipPrim) {
-    // A huge triangle is met again in every leaf the ray crosses before its hit: once it is the
-    // closest hit (skipPrim) it is no news, and its lanes need no t (NaN: no hit).
-    unsigned skip = 0;
-    for (unsigned b = bits(redo); b; b &= b - 1)
-        if (primAt(rows, n, i + uint32_t(__builtin_ctz(b))) == skipPrim) skip |= b & (0u - b);
-    if (skip == bits(redo)) {
-        float out[L];
-        t.storeu(out);
-        for (unsigned b = skip; b; b &= b - 1) out[__builtin_ctz(b)] = std::numeric_limits<float>::quiet_NaN();
-        return {VFloat<L>::loadu(out), VMask<L>{}};
-    }
-    const PlaneT<L> p = floatPlaneT(redo, r, rows, n, i, oScale, t);
-    const VMask<L> rest = redo & ~p.ok;
-    return {any(rest) ? exactPlaneT(rest, strict, r, rows, n, i, p.t, skipPrim) : p.t, p.ok};
 }
 
 /// Möller & Trumbore 1997: Cramer's rule on [-d, e1, e2] (t, u, v) = o - p0, with the edges
@@ -515,7 +446,7 @@ template <int L>
     F T = U * za + V * zb + W * zc;
     F invDet = F(1.0f) / det;
     F t = T * invDet;
-    VMask<L> known{}, plane{};
+    VMask<L> known{};
     // t's error, first order, in units of |d|_inf (with a factor 4 of margin): the sheared
     // corners carry absolute errors of a few u times their magnitudes (u (|x, y|_max +
     // 2 |z|_max)), and the rounding of the edge functions moves the point they weigh by up to
@@ -534,12 +465,12 @@ template <int L>
             // Lanes decided exactly with no zero volume cross strictly inside too; those with a
             // zero one cross on an edge, and exactPlaneT's inside test keeps them.
             const VMask<L> strict = inside | (exactly & (U != 0.0f) & (V != 0.0f) & (W != 0.0f));
-            const RedoneT<L> re = redoT(redo, strict, r, rows, n, i, t, sc.oScale, skipPrim);
-            t = re.t, plane = re.plane, known = redo & ~plane & strict;
+            t = exactPlaneT(redo, strict, r, rows, n, i, t, skipPrim);
+            known = redo & strict;
         }
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
-    return {t, V * invDet, W * invDet, valid, known, plane};
+    return {t, V * invDet, W * invDet, valid, known};
 }
 
 template <int L>
@@ -643,7 +574,7 @@ bool leafOccluded(Intersector kind, const TriangleRay &ray, const float *rows, u
 template <int L>
 unsigned chunkDecisions(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
                         float maxt, TriangleStore::ChunkAnswers &out) {
-    unsigned hits = 0, known = 0, plane = 0;
+    unsigned hits = 0, known = 0;
     for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L) {
         Step<L> s = testStep<L>(kind, ray, rows, n, i, maxt);
         float t[L], u[L], v[L];
@@ -656,10 +587,8 @@ unsigned chunkDecisions(Intersector kind, const TriangleRay &ray, const float *r
         }
         hits |= bits(s.hit) << (i - 16 * k);
         known |= bits(s.known & VMask<L>::firstN(std::min(n, 16 * k + 16) - i)) << (i - 16 * k);
-        plane |= bits(s.plane & VMask<L>::firstN(std::min(n, 16 * k + 16) - i)) << (i - 16 * k);
     }
     out.insideKnown = known;
-    out.floatPlane = plane;
     return out.hits = hits;
 }
 

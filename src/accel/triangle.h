@@ -103,9 +103,6 @@ public:
         /// kernel's barycentrics cleared their error bound, so the double inside test was skipped
         /// (the crossing must then lie strictly inside the triangle)
         unsigned insideKnown;
-        /// bit i: t of triangle 16k + i came from the plane equation in float (its error bound
-        /// cleared the tolerance that would otherwise send it to the double plane equation)
-        unsigned floatPlane;
         float t[16], u[16], v[16];  ///< the kernel's values (meaningful where hit)
     };
     /// \brief Fill \p out for chunk \p k with \p lanes lanes; returns out.hits.
