@@ -40,9 +40,12 @@ MeshData quadAt(float x0, float x1, float z0, float z1, float y) {
     return q;
 }
 
+/// Height of TableScene's ceiling.
+constexpr float kCeiling = 14.0f;
+
 /// A table-like scene (pa5's table: small objects on a ground quad, a large light quad high
-/// above): 16 x 16 small boxes on a ground quad at y = 0 and a ceiling quad at y = 30 about as
-/// wide as the ground.
+/// above): 16 x 16 small boxes on a ground quad at y = 0 and a ceiling quad at y = kCeiling
+/// about as wide as the ground.
 struct TableScene {
     MeshData objects, ground, ceiling;
     TableScene() {
@@ -50,7 +53,7 @@ struct TableScene {
             for (int j = 0; j < 16; ++j)
                 append(objects, scaled(cube(2), 0.3f, Vector3f(-10.0f + 20.0f * i / 15.0f, 0.3f, -10.0f + 20.0f * j / 15.0f)));
         ground = quadAt(-12.0f, 12.0f, -12.0f, 12.0f, 0.0f);
-        ceiling = quadAt(-11.0f, 13.0f, -10.0f, 11.0f, 30.0f);
+        ceiling = quadAt(-11.0f, 13.0f, -10.0f, 11.0f, kCeiling);
     }
 };
 
@@ -73,35 +76,43 @@ size_t differences(const Accel &octree, const Accel &brute, const std::vector<Ra
 } // namespace
 
 // The ground and the ceiling are both large enough to stay high in the tree instead of being
-// copied into every cell along them, but they lie 30 apart: one box around both is the whole
+// copied into every cell along them, but they lie 14 apart: one box around both is the whole
 // scene, entered by every ray (a shadow ray from a box towards a light between them would
 // test both quads). They must be kept in separate groups, each in its own flat box. Before
-// kept groups, the root kept all four triangles in one list whose box was the scene's.
+// kept groups, the root kept all four triangles in one list whose box was the scene's,
+// (-12, 0, -12) - (13, 14, 12).
 TEST(OctreeKeptGroups, AGroundAndACeilingAreKeptInSeparateBoxes) {
     TableScene s;
     Mesh objects(s.objects, "boxes"), ground(s.ground, "ground"), ceiling(s.ceiling, "ceiling");
-    auto alone = statsOf(*buildOctree({&objects}));
     auto octree = buildOctree({&objects, &ground, &ceiling});
     auto st = statsOf(*octree);
     size_t spanning = 0, groups = 0;
+    std::vector<OctreeKept> root;
     dynamic_cast<const OctreeAccel &>(*octree).forEachNode([&](const OctreeAccel::NodeView &v) {
         uint32_t total = 0;
         for (const OctreeKept &g : v.keptGroups()) {
             ++groups;
             total += g.count;
             EXPECT_LE(g.lo[1], g.hi[1]);
-            if (g.lo[1] <= 0.0f && g.hi[1] >= 30.0f) ++spanning;  // holds part of both quads
+            if (g.lo[1] <= 0.0f && g.hi[1] >= kCeiling) ++spanning;  // holds part of both quads
         }
         EXPECT_EQ(total, v.ref & OctreeNode::kKeptMask);  // the groups hold the node's kept triangles
         EXPECT_LE(v.keptGroups().size(), size_t(OctreeKept::kMaxGroups));
+        if (v.depth == 0) root = v.keptGroups();
     });
-    std::printf("[kept] ground and ceiling: %zu kept groups, %zu spanning both; refs %.0f (boxes alone %.0f), kept %.0f\n",
-                groups, spanning, st["triangle_refs"], alone["triangle_refs"], st["kept_refs"]);
+    std::printf("[kept] ground and ceiling: %zu kept groups (%zu at the root), %zu spanning both; refs %.0f, kept %.0f\n",
+                groups, root.size(), spanning, st["triangle_refs"], st["kept_refs"]);
     EXPECT_EQ(spanning, 0u);
     EXPECT_EQ(double(groups), st["kept_groups"]);
-    // Both quads stay high (four kept triangles), neither is copied along the cells.
-    EXPECT_GE(st["kept_refs"], 4.0);
-    EXPECT_LE(st["triangle_refs"], alone["triangle_refs"] + 8.0 + 0.01 * alone["triangle_refs"]);
+    // Both quads stay at the root, neither copied along the cells: two groups of two
+    // triangles, each in the quad's own flat box.
+    ASSERT_EQ(root.size(), 2u);
+    for (const OctreeKept &g : root) {
+        EXPECT_EQ(g.count, 2u);
+        EXPECT_EQ(g.lo[1], g.hi[1]);
+        EXPECT_TRUE(g.lo[1] == 0.0f || g.lo[1] == kCeiling) << g.lo[1];
+    }
+    EXPECT_NE(root[0].lo[1], root[1].lo[1]);
 }
 
 // With several kept groups per node, every traversal still gives brute force's answers: the
@@ -118,7 +129,7 @@ TEST(OctreeKeptGroups, SeveralGroupsPerNodeGiveTheClosestHit) {
     pcg32 prng(3);
     auto pu = [&] { return float(prng() >> 8) * 0x1p-24f; };
     for (int k = 0; k < 14; ++k) {
-        const Point3f c(24.0f * pu() - 12.0f, 2.0f + 26.0f * pu(), 24.0f * pu() - 12.0f);
+        const Point3f c(24.0f * pu() - 12.0f, 2.0f + (kCeiling - 4.0f) * pu(), 24.0f * pu() - 12.0f);
         MeshData q;
         q.positions = {c + Vector3f(-6, -0.5f, -5), c + Vector3f(6, 0.5f, -5), c + Vector3f(6, 0.8f, 5), c + Vector3f(-6, -0.2f, 5)};
         q.faces = {{0, 1, 2}, {0, 2, 3}};
@@ -137,10 +148,10 @@ TEST(OctreeKeptGroups, SeveralGroupsPerNodeGiveTheClosestHit) {
             switch (i % 4) {
             case 0:  // from the boxes' tops and the ground towards a light below the ceiling
                 origin = Point3f(24.0f * u() - 12.0f, 0.6f * u() + 1e-3f, 24.0f * u() - 12.0f);
-                target = Point3f(30.0f * u() - 15.0f, 26.0f + 3.0f * u(), 30.0f * u() - 15.0f);
+                target = Point3f(30.0f * u() - 15.0f, kCeiling - 4.0f + 3.0f * u(), 30.0f * u() - 15.0f);
                 break;
             case 1:  // from above, through the ceiling
-                origin = Point3f(24.0f * u() - 12.0f, 35.0f + 10.0f * u(), 24.0f * u() - 12.0f);
+                origin = Point3f(24.0f * u() - 12.0f, kCeiling + 5.0f + 10.0f * u(), 24.0f * u() - 12.0f);
                 target = Point3f(24.0f * u() - 12.0f, 0.7f * u(), 24.0f * u() - 12.0f);
                 break;
             case 2:  // along the ground
@@ -148,8 +159,8 @@ TEST(OctreeKeptGroups, SeveralGroupsPerNodeGiveTheClosestHit) {
                 target = Point3f(15.0f, 0.05f + 0.6f * u(), 24.0f * u() - 12.0f);
                 break;
             default:  // from between the quads, anywhere
-                origin = Point3f(24.0f * u() - 12.0f, 1.0f + 28.0f * u(), 24.0f * u() - 12.0f);
-                target = Point3f(30.0f * u() - 15.0f, 32.0f * u() - 1.0f, 30.0f * u() - 15.0f);
+                origin = Point3f(24.0f * u() - 12.0f, 1.0f + (kCeiling - 2.0f) * u(), 24.0f * u() - 12.0f);
+                target = Point3f(30.0f * u() - 15.0f, (kCeiling + 2.0f) * u() - 1.0f, 30.0f * u() - 15.0f);
                 break;
             }
             rays.emplace_back(origin, target - origin, 0.0f, i % 3 == 0 ? 1.0f : Infinity);
