@@ -64,7 +64,10 @@ struct Cost {
 };
 
 /// A kept group's box test (a scalar slab test), paid by every ray that reaches its node, in
-/// the cost model's units (Cost: one inner-node visit tests eight boxes at once).
+/// the cost model's units (Cost: one inner-node visit tests eight boxes at once). Charged for
+/// each group beyond a node's first: the model was tuned with one kept list whose box test
+/// it did not price, and single lists are decided as before (a charge for every list changed
+/// the trees of scenes without a second group, e.g. the cells over a tabletop's objects).
 constexpr double kKeptBoxCost = 0.1;
 
 /// A node's kept triangles go into separate groups only where the groups' estimated cost is
@@ -925,7 +928,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         int groupCount = 0;
         std::vector<uint8_t> groupOf(candidates.size());
         auto groupCost = [&](const BoundingBox3f &b, size_t count) {
-            return (boxArea > 0.0 ? std::min(1.0, area(b) / boxArea) : 1.0) * Cost::list(count) + kKeptBoxCost;
+            return (boxArea > 0.0 ? std::min(1.0, area(b) / boxArea) : 1.0) * Cost::list(count);
         };
         for (size_t k = 0; k < candidates.size() && k < OctreeNode::kKeptMask; ++k) {
             copies += candidates[k].copies;
@@ -935,6 +938,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                                   Point3f(r.hi[0], r.hi[1], r.hi[2]).cwiseMin(box.max));
             int choice = groupCount;
             double delta = groupCount < OctreeKept::kMaxGroups ? groupCost(b, 1) : Infinity, choiceCost = delta;
+            if (groupCount > 0) delta += kKeptBoxCost;  // a further group's box test
             BoundingBox3f choiceBox = b;
             for (int g = 0; g < groupCount; ++g) {
                 BoundingBox3f joined = groups[g].box;
@@ -1007,9 +1011,9 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     const size_t sum = sumDown + kept.size();
     if (sah) {
         // Leaf or split, by the cost model (greedy: the children are priced as leaves).
-        double cost = Cost::kNode;
+        double cost = Cost::kNode + (keptGroups.size() > 1 ? kKeptBoxCost * double(keptGroups.size() - 1) : 0.0);
         for (const TempNode::KeptGroup &g : keptGroups)
-            cost += (boxArea > 0.0 ? std::min(1.0, area(g.box) / boxArea) : 1.0) * Cost::list(g.count) + kKeptBoxCost;
+            cost += (boxArea > 0.0 ? std::min(1.0, area(g.box) / boxArea) : 1.0) * Cost::list(g.count);
         for (int c = 0; c < 8; ++c) cost += probability(c) * Cost::list(counts[c]);
         if (cost >= Cost::list(n)) return nullptr;
     } else if (in.rule == Rule::Count && (sumDown > 4 * down || (largest == down && sumDown >= 2 * down))) {
