@@ -77,7 +77,7 @@ void flatten(const TempNode &node, uint32_t index, uint32_t offset, uint32_t gro
             uint32_t count = uint32_t(node.refs[c].size());
             dst.child[c] = offset;
             dst.count[c] = count;
-            out.store.setLeaf(offset, node.refs[c].data(), count, out.vertices);
+            out.store.setLeaf(offset, node.refs[c].data(), count, out.vertices, &b);
             offset += uint32_t(TriangleStore::leafWords(count));
         }
     }

@@ -94,7 +94,7 @@ void orderChunks(Keyed *items, uint32_t begin, uint32_t end) {
 } // namespace
 
 void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
-                            const std::vector<std::array<Point3f, 3>> &vertices) {
+                            const std::vector<std::array<Point3f, 3>> &vertices, const BoundingBox3f *clip) {
     constexpr uint32_t kAhead = 8;  // corners prefetched this many triangles ahead (scattered ids)
     if (n == 0) return;  // an empty leaf has no block (and an empty store no data to copy into)
     float *rows = m_data.data() + offset;
@@ -108,7 +108,15 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
         for (uint32_t i = 0; i < n; ++i) {
             if (i + kAhead < n) __builtin_prefetch(&vertices[ids[i + kAhead]]);
             const auto &v = vertices[ids[i]];
-            items[i] = {v[0] + v[1] + v[2], ids[i]};
+            Point3f key = v[0] + v[1] + v[2];
+            if (clip) {
+                // A triangle reaching out of the leaf is ordered by the part inside it (three
+                // times the clipped bounds' centre, the scale of the other keys).
+                const Point3f lo = v[0].cwiseMin(v[1]).cwiseMin(v[2]), hi = v[0].cwiseMax(v[1]).cwiseMax(v[2]);
+                if (!clip->contains(lo) || !clip->contains(hi))
+                    key = 1.5f * (lo.cwiseMax(clip->min) + hi.cwiseMin(clip->max));
+            }
+            items[i] = {key, ids[i]};
         }
         orderChunks(items.data(), 0, n);
         for (uint32_t i = 0; i < n; ++i) ordered[i] = items[i].prim;
@@ -129,9 +137,16 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n,
     float *boxes = rows + size_t(10) * n;
     for (uint32_t k = 0; k < nc; ++k) {
         BoundingBox3f b;
-        for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i)
+        for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i) {
+            BoundingBox3f t;
             for (int v = 0; v < 3; ++v)
-                b.expandBy(Point3f(rows[(3 * v) * n + i], rows[(3 * v + 1) * n + i], rows[(3 * v + 2) * n + i]));
+                t.expandBy(Point3f(rows[(3 * v) * n + i], rows[(3 * v + 1) * n + i], rows[(3 * v + 2) * n + i]));
+            // Clipped to the leaf's box: a ray meets the triangle's other parts in the other
+            // cells that hold it (a long wall's chunk would otherwise reach far out of the
+            // leaf, and every ray crossing the leaf would test it).
+            if (clip) t = BoundingBox3f(t.min.cwiseMax(clip->min), t.max.cwiseMin(clip->max));
+            b.expandBy(t);
+        }
         for (int a = 0; a < 3; ++a) {
             boxes[size_t(a) * nc + k] = b.min[a];
             boxes[size_t(3 + a) * nc + k] = b.max[a];

@@ -79,8 +79,11 @@ public:
     /// \brief Allocate \p words words for intersector \p kind.
     void reset(Intersector kind, size_t words);
     /// \brief Write a leaf at word \p offset from the global ids \p prims (thread-safe for
-    /// disjoint leaves). \p vertices holds the three corners of every global triangle.
-    void setLeaf(size_t offset, const uint32_t *prims, uint32_t n, const std::vector<std::array<Point3f, 3>> &vertices);
+    /// disjoint leaves). \p vertices holds the three corners of every global triangle. With
+    /// \p clip (an octree leaf's box: every hit the leaf must report lies in it), the chunk
+    /// boxes hold only the triangles' bounds within it.
+    void setLeaf(size_t offset, const uint32_t *prims, uint32_t n, const std::vector<std::array<Point3f, 3>> &vertices,
+                 const BoundingBox3f *clip = nullptr);
 
     /// \brief Closest hit among the leaf's triangles with t in [ray.mint, best.t]; a hit at
     /// exactly best.t wins only with a lower triangle id (deterministic ties). Updates \p best.

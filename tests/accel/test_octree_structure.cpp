@@ -514,3 +514,40 @@ TEST(OctreeLargeTriangles, AFloorAndAFarWallAreNotKeptInOneBox) {
     EXPECT_GT(hits, 5000u);
     EXPECT_EQ(differ, 0u);
 }
+
+// A leaf's chunk boxes hold only the parts of its triangles inside the leaf's box: 64 walls
+// ten units tall, their feet in a leaf one unit tall. Rays that cross the walls above the leaf
+// skip every chunk (the walls' other parts are tested in the cells above, which hold them too);
+// rays inside the leaf still meet the same walls. Unclipped, every chunk box spans the walls'
+// full height and the rays above the leaf test (and hit) them.
+TEST(OctreeLeaves, ChunkBoxesStayInsideTheLeaf) {
+    std::vector<std::array<Point3f, 3>> walls;
+    for (int i = 0; i < 64; ++i) {
+        const float x = 0.1f * float(i);
+        walls.push_back({Point3f(x, 0, 0), Point3f(x, 10, 0), Point3f(x, 0, 1)});
+    }
+    std::vector<uint32_t> ids(walls.size());
+    for (uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
+    const BoundingBox3f leaf(Point3f(0, 0, 0), Point3f(6.4f, 1, 1));
+    const uint32_t n = uint32_t(ids.size());
+    for (bool clipped : {true, false}) {
+        TriangleStore store;
+        store.reset(Intersector::Watertight, TriangleStore::leafWords(n));
+        store.setLeaf(0, ids.data(), n, walls, clipped ? &leaf : nullptr);
+        int inside = 0, above = 0;
+        for (int k = 0; k < 10; ++k) {
+            // Along x through every wall, at heights 0.5 (in the leaf) and 5 (above it), z 0.01
+            // where the walls are wide enough at both heights.
+            for (float y : {0.5f, 5.0f}) {
+                TriangleRay ray(Ray3f(Point3f(-1.0f, y, 0.01f + 0.001f * float(k)), Vector3f(1, 0, 0)));
+                Hit best;
+                best.t = Infinity;
+                const bool hit = store.intersect(ray, 0, n, best);
+                (y < 1.0f ? inside : above) += hit;
+                EXPECT_EQ(store.occluded(ray, 0, n, Infinity), hit) << "y " << y;
+            }
+        }
+        EXPECT_EQ(inside, 10);
+        EXPECT_EQ(above, clipped ? 0 : 10) << (clipped ? "clipped" : "unclipped");
+    }
+}
