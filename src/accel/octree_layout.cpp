@@ -43,7 +43,7 @@ void flatten(const TempNode &node, uint32_t index, uint32_t offset, uint32_t gro
              offset,
              kg.count,
              g + 1 < node.keptGroups.size() ? group : 0u};
-        out.store.setLeaf(offset, node.kept.data() + first, kg.count, out.vertices);
+        out.store.setLeaf(offset, node.kept.data() + first, kg.count, out.vertices, &kg.box);  // (hits outside: other cells)
         offset += uint32_t(TriangleStore::leafWords(kg.count));
         first += kg.count;
     }
