@@ -94,6 +94,7 @@ std::vector<AccelStat> OctreeAccel::statistics() const {
     stats.push_back({"triangle_refs", double(m_stats.refs), true});
     stats.push_back({"kept_refs", double(m_stats.keptRefs), true});
     stats.push_back({"kept_nodes", double(m_stats.keptNodes), true});
+    stats.push_back({"kept_groups", double(m_stats.keptGroups), true});
     stats.push_back({"bytes", double(bytes()), true});
     return stats;
 }

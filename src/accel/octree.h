@@ -40,7 +40,7 @@ struct alignas(64) OctreeNode {
 
     /// A reference to an inner node (in its parent's count, or the root's): kInner, the node's
     /// pattern code in bits 25-30, and the number of large triangles the node keeps itself
-    /// (OctreeAccel::m_kept says where they are and what box they fill).
+    /// (OctreeAccel::m_kept says where they are, in which groups and what boxes they fill).
     static constexpr uint32_t kInner = 0x80000000u;
     static constexpr int kPatternShift = 25;
     static constexpr uint32_t kKeptMask = (1u << kPatternShift) - 1u;
@@ -48,12 +48,17 @@ struct alignas(64) OctreeNode {
 };
 static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
 
-/// \brief Where an inner node's kept triangles are (word offset in the TriangleStore) and the
-/// bounding box of those triangles, so that a ray that does not enter the box, or enters it
-/// only beyond its closest hit so far, skips them.
+/// \brief One group of an inner node's kept triangles: where they are (word offset in the
+/// TriangleStore), how many, and their bounding box, so that a ray that does not enter the
+/// box, or enters it only beyond its closest hit so far, skips them. A node keeps its large
+/// triangles in spatially separate groups (a ground quad and a light quad far above it: one
+/// box around both would be the whole scene, entered by every ray); \p next is the index of
+/// its next group in OctreeAccel::m_kept, 0 after the last.
 struct OctreeKept {
     float lo[3], hi[3];
-    uint32_t offset;
+    uint32_t offset, count, next;
+    /// At most this many groups per node (the traversal's stack holds them beside the children).
+    static constexpr int kMaxGroups = 8;
 };
 
 /// \brief Octree accelerator. Properties: `buildRule` (sah* | count | seed), `maxDepth`,
@@ -120,7 +125,18 @@ public:
         uint32_t index, ref;
         int depth;
         const OctreeNode &node;
-        const OctreeKept &kept;  ///< its kept list (ref & OctreeNode::kKeptMask triangles)
+        const OctreeKept &kept;  ///< its first kept group (ref & OctreeNode::kKeptMask triangles in all)
+        const std::vector<OctreeKept> &keptStore;  ///< where kept.next and the later groups point
+        /// \brief The node's kept groups, in the order the traversals test them.
+        std::vector<OctreeKept> keptGroups() const {
+            std::vector<OctreeKept> groups;
+            if (!(ref & OctreeNode::kKeptMask)) return groups;
+            for (const OctreeKept *g = &kept;; g = &keptStore[g->next]) {
+                groups.push_back(*g);
+                if (!g->next) break;
+            }
+            return groups;
+        }
     };
     /// \brief Call \p visit for every inner node, parents before children.
     template <typename Visit> void forEachNode(Visit visit) const {
@@ -130,7 +146,7 @@ public:
             auto [index, refDepth] = stack.back();
             stack.pop_back();
             const OctreeNode &node = m_nodes[index];
-            visit(NodeView{index, refDepth.first, refDepth.second, node, m_kept[index]});
+            visit(NodeView{index, refDepth.first, refDepth.second, node, m_kept[index], m_kept});
             for (int c = 0; c < 8; ++c)
                 if (node.count[c] & OctreeNode::kInner) stack.push_back({node.child[c], {node.count[c], refDepth.second + 1}});
         }
@@ -160,7 +176,8 @@ private:
     Intersector m_intersector;
 
     // Structure: node 0 is the root (always an inner node), referenced as (0, m_rootCount).
-    // m_kept holds, per node, where its kept triangles are in m_triangles and their box.
+    // m_kept holds, per node, its first kept group (where its triangles are in m_triangles,
+    // how many, their box), then the nodes' further groups.
     std::vector<OctreeNode> m_nodes;
     std::vector<OctreeKept> m_kept;
     uint32_t m_rootCount = 0;
@@ -168,7 +185,7 @@ private:
 
     // Statistics of the last build.
     struct Stats {
-        size_t internalNodes = 0, leafNodes = 0, emptyLeaves = 0, refs = 0, keptRefs = 0, keptNodes = 0;
+        size_t internalNodes = 0, leafNodes = 0, emptyLeaves = 0, refs = 0, keptRefs = 0, keptNodes = 0, keptGroups = 0;
         int maxDepthReached = 0;
     } m_stats;
 };

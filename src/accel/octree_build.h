@@ -51,13 +51,19 @@ struct TempNode {
     std::unique_ptr<TempNode> inner[8];
     LeafIds refs[8];
     LargeArray<uint32_t> leafIds;  ///< the ids of all its leaves, one block (refs[c] point into it)
-    std::vector<uint32_t> kept;  ///< large triangles tested at this node
-    BoundingBox3f keptBox;       ///< their bounds
+    std::vector<uint32_t> kept;  ///< large triangles tested at this node, group after group
+    /// The groups of kept: how many of its triangles each holds (in order) and their bounds.
+    struct KeptGroup {
+        uint32_t count;
+        BoundingBox3f box;
+    };
+    std::vector<KeptGroup> keptGroups;
     OctreeNode::Pattern pattern{{0, 1, 2}};
     int childDepth[8] = {};   ///< depth of each child as the build rule counts it
     size_t subtreeNodes = 1;  ///< inner nodes in this subtree, this one included
     size_t subtreeRefs = 0;   ///< triangle references in this subtree (leaves and kept lists)
     size_t subtreeWords = 0;  ///< TriangleStore words of this subtree
+    size_t subtreeGroups = 0; ///< kept groups in this subtree beyond each node's first
 };
 
 /// \brief The bisections that make the children of \p cell under \p rule (see

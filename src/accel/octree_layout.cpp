@@ -27,20 +27,30 @@ struct Layout {
 /// The reference to \p node that its parent stores (count field).
 uint32_t innerCount(const TempNode &node) { return OctreeNode::innerRef(node.pattern, uint32_t(node.kept.size())); }
 
-/// Write \p node at \p index (its subtree in preorder after it), its kept list at word
-/// \p offset and its leaves after that.
-void flatten(const TempNode &node, uint32_t index, uint32_t offset, const Layout &out) {
+/// Write \p node at \p index (its subtree in preorder after it), its kept groups at word
+/// \p offset and its leaves after that; its kept groups beyond the first go to out.kept from
+/// \p group on, those of its subtree after them.
+void flatten(const TempNode &node, uint32_t index, uint32_t offset, uint32_t group, const Layout &out) {
     OctreeNode &dst = out.nodes[index];
-    out.kept[index] = {{node.keptBox.min.x(), node.keptBox.min.y(), node.keptBox.min.z()},
-                       {node.keptBox.max.x(), node.keptBox.max.y(), node.keptBox.max.z()}, offset};
-    if (!node.kept.empty()) {
-        out.store.setLeaf(offset, node.kept.data(), uint32_t(node.kept.size()), out.vertices);
-        offset += uint32_t(TriangleStore::leafWords(uint32_t(node.kept.size())));
+    out.kept[index] = {{Infinity, Infinity, Infinity}, {-Infinity, -Infinity, -Infinity}, offset, 0, 0};
+    size_t first = 0;
+    for (size_t g = 0; g < node.keptGroups.size(); ++g) {
+        const TempNode::KeptGroup &kg = node.keptGroups[g];
+        const uint32_t slot = g == 0 ? index : group++;
+        OctreeKept &k = out.kept[slot];
+        k = {{kg.box.min.x(), kg.box.min.y(), kg.box.min.z()},
+             {kg.box.max.x(), kg.box.max.y(), kg.box.max.z()},
+             offset,
+             kg.count,
+             g + 1 < node.keptGroups.size() ? group : 0u};
+        out.store.setLeaf(offset, node.kept.data() + first, kg.count, out.vertices, &kg.box);  // (hits outside: other cells)
+        offset += uint32_t(TriangleStore::leafWords(kg.count));
+        first += kg.count;
     }
     uint32_t next = index + 1;
     // Subtrees large enough to pay for a task are written in parallel (a task_group only
     // where there are some: creating one per node would cost more than small subtrees).
-    std::unique_ptr<tbb::task_group> group;
+    std::unique_ptr<tbb::task_group> tasks;
     for (int c = 0; c < 8; ++c) {
         const BoundingBox3f &b = node.box[c];
         bool empty = !node.inner[c] && node.refs[c].empty();
@@ -55,13 +65,14 @@ void flatten(const TempNode &node, uint32_t index, uint32_t offset, const Layout
             dst.child[c] = next;
             dst.count[c] = innerCount(sub);
             if (sub.subtreeRefs > kParallelRefs) {
-                if (!group) group = std::make_unique<tbb::task_group>();
-                group->run([&, next, offset] { flatten(sub, next, offset, out); });
+                if (!tasks) tasks = std::make_unique<tbb::task_group>();
+                tasks->run([&, next, offset, group] { flatten(sub, next, offset, group, out); });
             } else {
-                flatten(sub, next, offset, out);
+                flatten(sub, next, offset, group, out);
             }
             next += uint32_t(sub.subtreeNodes);
             offset += uint32_t(sub.subtreeWords);
+            group += uint32_t(sub.subtreeGroups);
         } else if (!empty) {
             uint32_t count = uint32_t(node.refs[c].size());
             dst.child[c] = offset;
@@ -70,7 +81,7 @@ void flatten(const TempNode &node, uint32_t index, uint32_t offset, const Layout
             offset += uint32_t(TriangleStore::leafWords(count));
         }
     }
-    if (group) group->wait();
+    if (tasks) tasks->wait();
 }
 
 } // namespace
@@ -145,11 +156,11 @@ void OctreeAccel::buildImpl() {
                             root->subtreeRefs);
     m_nodes.resize(root->subtreeNodes);
     m_nodes.shrink_to_fit();
-    m_kept.resize(root->subtreeNodes);
+    m_kept.resize(root->subtreeNodes + root->subtreeGroups);
     m_kept.shrink_to_fit();
     m_rootCount = innerCount(*root);
     m_triangles.reset(m_intersector, root->subtreeWords);
-    flatten(*root, 0, 0, Layout{m_nodes, m_kept, m_triangles, vertices.data()});
+    flatten(*root, 0, 0, uint32_t(root->subtreeNodes), Layout{m_nodes, m_kept, m_triangles, vertices.data()});
 
     // Statistics over the temporary tree (serial; a few ten thousand nodes).
     m_stats.refs = root->subtreeRefs;
@@ -165,6 +176,7 @@ void OctreeAccel::buildImpl() {
         ++m_stats.internalNodes;
         m_stats.keptRefs += node->kept.size();
         m_stats.keptNodes += !node->kept.empty();
+        m_stats.keptGroups += node->keptGroups.size();
         for (int c = 0; c < 8; ++c) {
             m_stats.maxDepthReached = std::max(m_stats.maxDepthReached, node->childDepth[c]);
             if (node->inner[c]) {

@@ -54,8 +54,8 @@ namespace {
 /// Traversal"): a box is never culled for a ray that touches it.
 constexpr float kSlabEps = 0x1p-20f;
 
-/// Enough for the deepest tree: at most seven siblings and one kept list wait per level.
-constexpr int kStackSize = 8 * (OctreeAccel::kMaxDepthLimit + 1);
+/// Enough for the deepest tree: at most seven siblings and the node's kept groups wait per level.
+constexpr int kStackSize = (7 + OctreeKept::kMaxGroups) * (OctreeAccel::kMaxDepthLimit + 1);
 
 /// A kept list waiting on the stack is a leaf entry (its offset and count); a measuring build
 /// marks it with this bit so that it is counted as a kept list.
@@ -271,33 +271,45 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             const OctreeNode &node = m_nodes[child];
             uint32_t near[3];
             int pushed = simd.push(node, patternOf(count), ray.mint, tri.cullLimit(best.t), stackChild + sp, stackCount + sp, stackT + sp, near);
-            // The node's own large triangles, if the ray enters their box: now if that box comes
-            // before the nearest child, else in order of entry among the waiting children.
-            float tk, tc;
-            if (uint32_t kept = count & OctreeNode::kKeptMask; kept && slab.hit(m_kept[child], ray.mint, tri.cullLimit(best.t), tk)) {
-                if (pushed < 0 || !slab.hit(node, int(near[2]), ray.mint, tri.cullLimit(best.t), tc) || tk <= tc) {
-                    countedList(true, kept, [&] { return m_triangles.intersect(tri.get(), m_kept[child].offset, kept, best); });
-                    if (pushed >= 0 && tc > tri.cullLimit(best.t)) pushed = -1 - pushed;  // the nearest child now lies beyond the hit
-                } else {
-                    int i = sp + pushed;
-                    for (; i > sp && stackT[i - 1] < tk; --i) {
-                        stackChild[i] = stackChild[i - 1];
-                        stackCount[i] = stackCount[i - 1];
-                        stackT[i] = stackT[i - 1];
+            // descend: the nearest child is still to be entered; pushed: siblings on the stack.
+            bool descend = pushed >= 0;
+            pushed = std::max(pushed, 0);
+            // The node's own large triangles, group by group, if the ray enters the group's box:
+            // now if that box comes before the nearest child, else in order of entry among the
+            // waiting children.
+            if (count & OctreeNode::kKeptMask) {
+                float tc = 0.0f;
+                const bool nearIn = descend && slab.hit(node, int(near[2]), ray.mint, tri.cullLimit(best.t), tc);
+                for (uint32_t g = child;; g = m_kept[g].next) {
+                    const OctreeKept &group = m_kept[g];
+                    float tk;
+                    if (slab.hit(group, ray.mint, tri.cullLimit(best.t), tk)) {
+                        if (!nearIn || !descend || tk <= tc) {
+                            countedList(true, group.count,
+                                        [&] { return m_triangles.intersect(tri.get(), group.offset, group.count, best); });
+                            if (descend && tc > tri.cullLimit(best.t)) descend = false;  // the nearest child now lies beyond the hit
+                        } else {
+                            int i = sp + pushed;
+                            for (; i > sp && stackT[i - 1] < tk; --i) {
+                                stackChild[i] = stackChild[i - 1];
+                                stackCount[i] = stackCount[i - 1];
+                                stackT[i] = stackT[i - 1];
+                            }
+                            stackChild[i] = group.offset;
+                            stackCount[i] = group.count | kKeptTag;
+                            stackT[i] = tk;
+                            ++pushed;
+                        }
                     }
-                    stackChild[i] = m_kept[child].offset;
-                    stackCount[i] = kept | kKeptTag;
-                    stackT[i] = tk;
-                    ++pushed;
+                    if (!group.next) break;
                 }
             }
-            if (pushed >= 0) {  // descend into the nearest child at once
-                sp += pushed;
+            sp += pushed;
+            if (descend) {  // descend into the nearest child at once
                 child = near[0];
                 count = near[1];
                 continue;
             }
-            sp += -1 - pushed;  // (-1 - k: k siblings pushed, the nearest child dropped)
         } else {
             countedList(count & kKeptTag, count & ~kKeptTag,
                         [&] { return m_triangles.intersect(tri.get(), child, count & ~kKeptTag, best); });
@@ -327,11 +339,16 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
         if (count & OctreeNode::kInner) {
             NORI_OCTREE_COUNT(nodes, 1);
             // The node's own large triangles first (the likeliest occluders), if the ray enters their box.
-            float tk;
-            if (uint32_t kept = count & OctreeNode::kKeptMask;
-                kept && slab.hit(m_kept[child], ray.mint, ray.maxt, tk) &&
-                countedList(true, kept, [&] { return m_triangles.occluded(tri.get(), m_kept[child].offset, kept, ray.maxt); }))
-                return true;
+            if (count & OctreeNode::kKeptMask)
+                for (uint32_t g = child;; g = m_kept[g].next) {
+                    const OctreeKept &group = m_kept[g];
+                    float tk;
+                    if (slab.hit(group, ray.mint, ray.maxt, tk) && countedList(true, group.count, [&] {
+                            return m_triangles.occluded(tri.get(), group.offset, group.count, ray.maxt);
+                        }))
+                        return true;
+                    if (!group.next) break;
+                }
             uint32_t near[3];
             int pushed = simd.push(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
                                    stackT + sp, near);
@@ -390,7 +407,11 @@ bool OctreeAccel::intersectSorted(const Ray3f &ray, Hit &hit) const {
             m_triangles.intersect(tri, e.child, e.count, best);
             continue;
         }
-        if (uint32_t kept = e.count & OctreeNode::kKeptMask) m_triangles.intersect(tri, m_kept[e.child].offset, kept, best);
+        if (e.count & OctreeNode::kKeptMask)
+            for (uint32_t g = e.child;; g = m_kept[g].next) {
+                m_triangles.intersect(tri, m_kept[g].offset, m_kept[g].count, best);
+                if (!m_kept[g].next) break;
+            }
         const OctreeNode &node = m_nodes[e.child];
         int order[8];
         float tnear[8];
@@ -415,8 +436,11 @@ bool OctreeAccel::occludedSorted(const Ray3f &ray) const {
             if (m_triangles.occluded(tri, e.child, e.count, ray.maxt)) return true;
             continue;
         }
-        uint32_t kept = e.count & OctreeNode::kKeptMask;
-        if (kept && m_triangles.occluded(tri, m_kept[e.child].offset, kept, ray.maxt)) return true;
+        if (e.count & OctreeNode::kKeptMask)
+            for (uint32_t g = e.child;; g = m_kept[g].next) {
+                if (m_triangles.occluded(tri, m_kept[g].offset, m_kept[g].count, ray.maxt)) return true;
+                if (!m_kept[g].next) break;
+            }
         const OctreeNode &node = m_nodes[e.child];
         int order[8];
         float tnear[8];
@@ -452,8 +476,14 @@ struct SeedTree {
 bool seedRecurse(const SeedTree &tree, uint32_t index, uint32_t count, const Ray3f &ray, const SlabRay &slab,
                  const TriangleRay &tri, Hit &best) {
     // The node's own large triangles count as its first child.
-    uint32_t kept = count & OctreeNode::kKeptMask;
-    if (kept && tree.store.intersect(tri, tree.kept[index].offset, kept, best)) return true;
+    if (count & OctreeNode::kKeptMask) {
+        bool found = false;
+        for (uint32_t g = index;; g = tree.kept[g].next) {
+            found |= tree.store.intersect(tri, tree.kept[g].offset, tree.kept[g].count, best);
+            if (!tree.kept[g].next) break;
+        }
+        if (found) return true;
+    }
     const OctreeNode &node = tree.nodes[index];
     int order[8], n = 0;
     float dist[8];

@@ -1,0 +1,183 @@
+/// \file test_octree_kept.cpp
+/// \brief The octree's kept groups: large triangles a node keeps instead of copying them into
+/// its children are grouped by where they lie, each group with its own box, and the
+/// traversals still give brute force's answers with several groups per node.
+#include <gtest/gtest.h>
+#include "accel/octree.h"
+#include "robust_util.h"
+#include <map>
+#include <pcg_random.hpp>
+
+using namespace nori;
+using namespace nori::robust;
+
+namespace {
+
+std::map<std::string, double> statsOf(const Accel &accel) {
+    std::map<std::string, double> s;
+    for (const AccelStat &st : accel.statistics()) s[st.name] = st.value;
+    return s;
+}
+
+std::unique_ptr<Accel> buildOctree(const std::vector<const Mesh *> &meshes, const char *traversal = "simd") {
+    PropertyList p;
+    p.setString("traversal", traversal);
+    return makeAccel("octree", p, meshes);
+}
+
+/// Append \p part to \p out.
+void append(MeshData &out, const MeshData &part) {
+    const uint32_t base = uint32_t(out.positions.size());
+    out.positions.insert(out.positions.end(), part.positions.begin(), part.positions.end());
+    for (auto f : part.faces) out.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+}
+
+/// The quad [x0, x1] x [z0, z1] at height y (two triangles).
+MeshData quadAt(float x0, float x1, float z0, float z1, float y) {
+    MeshData q;
+    q.positions = {Point3f(x0, y, z0), Point3f(x1, y, z0), Point3f(x1, y, z1), Point3f(x0, y, z1)};
+    q.faces = {{0, 1, 2}, {0, 2, 3}};
+    return q;
+}
+
+/// Height of TableScene's ceiling.
+constexpr float kCeiling = 18.0f;
+
+/// A table-like scene (pa5's table: small objects on a ground quad, a large light quad high
+/// above): 16 x 16 small boxes (each face tessellated \p n x n) on a ground quad at y = 0 and
+/// a ceiling quad at y = kCeiling about as wide as the ground.
+struct TableScene {
+    MeshData objects, ground, ceiling;
+    explicit TableScene(int n) {
+        for (int i = 0; i < 16; ++i)
+            for (int j = 0; j < 16; ++j)
+                append(objects, scaled(cube(n), 0.3f, Vector3f(-10.0f + 20.0f * i / 15.0f, 0.3f, -10.0f + 20.0f * j / 15.0f)));
+        ground = quadAt(-12.0f, 12.0f, -12.0f, 12.0f, 0.0f);
+        ceiling = quadAt(-11.0f, 13.0f, -10.0f, 11.0f, kCeiling);
+    }
+};
+
+/// Every answer of \p octree (closest hit: found, triangle, t; any hit) on \p rays against
+/// brute force's; returns the rays that differ (and counts brute force's hits in \p hits).
+size_t differences(const Accel &octree, const Accel &brute, const std::vector<Ray3f> &rays, size_t &hits) {
+    size_t differ = 0;
+    hits = 0;
+    for (const Ray3f &ray : rays) {
+        Hit a, b;
+        const bool fa = octree.intersect(ray, a), fb = brute.intersect(ray, b);
+        hits += fb;
+        const bool same = fa == fb && (!fa || (a.prim == b.prim && a.t == b.t)) && octree.occluded(ray) == brute.occluded(ray);
+        if (!same && ++differ <= 3)
+            std::printf("[kept] octree %d t %.9g prim %u, brute %d t %.9g prim %u\n", int(fa), a.t, a.prim, int(fb), b.t, b.prim);
+    }
+    return differ;
+}
+
+} // namespace
+
+// The ground and the ceiling are both large enough to stay high in the tree instead of being
+// copied into every cell along them, but they lie 18 apart: one box around both is the whole
+// scene, entered by every ray (a shadow ray from a box towards a light between them would
+// test both quads). They must be kept in separate groups, each in its own flat box. Before
+// kept groups, the root kept all four triangles in one list whose box was the scene's,
+// (-12, 0, -12) - (13, 18, 12) (so it did with the ceiling at 16 to 20).
+TEST(OctreeKeptGroups, AGroundAndACeilingAreKeptInSeparateBoxes) {
+    TableScene s(4);
+    Mesh objects(s.objects, "boxes"), ground(s.ground, "ground"), ceiling(s.ceiling, "ceiling");
+    auto octree = buildOctree({&objects, &ground, &ceiling});
+    auto st = statsOf(*octree);
+    size_t spanning = 0, groups = 0;
+    std::vector<OctreeKept> root;
+    dynamic_cast<const OctreeAccel &>(*octree).forEachNode([&](const OctreeAccel::NodeView &v) {
+        uint32_t total = 0;
+        for (const OctreeKept &g : v.keptGroups()) {
+            ++groups;
+            total += g.count;
+            EXPECT_LE(g.lo[1], g.hi[1]);
+            if (g.lo[1] <= 0.0f && g.hi[1] >= kCeiling) ++spanning;  // holds part of both quads
+        }
+        EXPECT_EQ(total, v.ref & OctreeNode::kKeptMask);  // the groups hold the node's kept triangles
+        EXPECT_LE(v.keptGroups().size(), size_t(OctreeKept::kMaxGroups));
+        if (v.depth == 0) root = v.keptGroups();
+    });
+    std::printf("[kept] ground and ceiling: %zu kept groups (%zu at the root), %zu spanning both; refs %.0f, kept %.0f\n",
+                groups, root.size(), spanning, st["triangle_refs"], st["kept_refs"]);
+    EXPECT_EQ(spanning, 0u);
+    EXPECT_EQ(double(groups), st["kept_groups"]);
+    // Both quads stay at the root, neither copied along the cells: two groups of two
+    // triangles, each in the quad's own flat box.
+    ASSERT_EQ(root.size(), 2u);
+    for (const OctreeKept &g : root) {
+        EXPECT_EQ(g.count, 2u);
+        EXPECT_EQ(g.lo[1], g.hi[1]);
+        EXPECT_TRUE(g.lo[1] == 0.0f || g.lo[1] == kCeiling) << g.lo[1];
+    }
+    EXPECT_NE(root[0].lo[1], root[1].lo[1]);
+}
+
+// With several kept groups per node, every traversal still gives brute force's answers: the
+// simd closest-hit traversal tests a group at once when its box comes before the nearest
+// child and otherwise puts it among the waiting children, the any-hit one tests groups first.
+// Rays as a renderer sends them on such a scene: shadow rays from the boxes and the ground
+// towards points below the ceiling, camera rays from above through the ceiling, rays along
+// the ground, and rays from below the ceiling upwards.
+TEST(OctreeKeptGroups, SeveralGroupsPerNodeGiveTheClosestHit) {
+    TableScene s(2);
+    // Large slanted panes scattered across the scene, as more candidates for groups than a
+    // node may hold (OctreeKept::kMaxGroups).
+    MeshData panes;
+    pcg32 prng(3);
+    auto pu = [&] { return float(prng() >> 8) * 0x1p-24f; };
+    for (int k = 0; k < 14; ++k) {
+        const Point3f c(24.0f * pu() - 12.0f, 2.0f + (kCeiling - 4.0f) * pu(), 24.0f * pu() - 12.0f);
+        MeshData q;
+        q.positions = {c + Vector3f(-6, -0.5f, -5), c + Vector3f(6, 0.5f, -5), c + Vector3f(6, 0.8f, 5), c + Vector3f(-6, -0.2f, 5)};
+        q.faces = {{0, 1, 2}, {0, 2, 3}};
+        append(panes, q);
+    }
+    Mesh objects(s.objects, "boxes"), ground(s.ground, "ground"), ceiling(s.ceiling, "ceiling"), glass(panes, "panes");
+    size_t most = 0;
+    for (bool withPanes : {false, true}) {
+        std::vector<const Mesh *> meshes{&objects, &ground, &ceiling};
+        if (withPanes) meshes.push_back(&glass);
+        auto brute = makeAccel("brute", PropertyList(), meshes);
+        pcg32 rng(7);
+        auto u = [&] { return float(rng() >> 8) * 0x1p-24f; };
+        std::vector<Ray3f> rays;
+        for (int i = 0; i < 24000; ++i) {
+            Point3f origin, target;
+            switch (i % 4) {
+            case 0:  // from the boxes' tops and the ground towards a light below the ceiling
+                origin = Point3f(24.0f * u() - 12.0f, 0.6f * u() + 1e-3f, 24.0f * u() - 12.0f);
+                target = Point3f(30.0f * u() - 15.0f, kCeiling - 4.0f + 3.0f * u(), 30.0f * u() - 15.0f);
+                break;
+            case 1:  // from above, through the ceiling
+                origin = Point3f(24.0f * u() - 12.0f, kCeiling + 5.0f + 10.0f * u(), 24.0f * u() - 12.0f);
+                target = Point3f(24.0f * u() - 12.0f, 0.7f * u(), 24.0f * u() - 12.0f);
+                break;
+            case 2:  // along the ground
+                origin = Point3f(-15.0f, 0.05f + 0.6f * u(), 24.0f * u() - 12.0f);
+                target = Point3f(15.0f, 0.05f + 0.6f * u(), 24.0f * u() - 12.0f);
+                break;
+            default:  // from between the quads, anywhere
+                origin = Point3f(24.0f * u() - 12.0f, 1.0f + (kCeiling - 2.0f) * u(), 24.0f * u() - 12.0f);
+                target = Point3f(30.0f * u() - 15.0f, (kCeiling + 2.0f) * u() - 1.0f, 30.0f * u() - 15.0f);
+                break;
+            }
+            rays.emplace_back(origin, target - origin, 0.0f, i % 3 == 0 ? 1.0f : Infinity);
+        }
+        for (const char *traversal : {"simd", "sorted"}) {
+            auto octree = buildOctree(meshes, traversal);
+            dynamic_cast<const OctreeAccel &>(*octree).forEachNode(
+                [&](const OctreeAccel::NodeView &v) { most = std::max(most, v.keptGroups().size()); });
+            size_t hits = 0;
+            const size_t differ = differences(*octree, *brute, rays, hits);
+            std::printf("[kept] panes %d, %s: at most %zu kept groups per node, kept %.0f; %zu of %zu rays hit, %zu differ\n",
+                        int(withPanes), traversal, most, statsOf(*octree)["kept_refs"], hits, rays.size(), differ);
+            EXPECT_GT(hits, rays.size() / 3);
+            EXPECT_EQ(differ, 0u) << traversal << (withPanes ? " with the panes" : "");
+        }
+    }
+    EXPECT_GE(most, 2u);  // the test reaches nodes with several groups
+    EXPECT_LE(most, size_t(OctreeKept::kMaxGroups));
+}
