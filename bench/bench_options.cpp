@@ -52,10 +52,11 @@ void OptionParser::declare(CliApp &cli, BenchOptions &o) {
         ->needs(scene)
         ->option_text("DIR")
         ->group(InputGroup);
-    app.add_option("--width", o.width, "camera rays: image width (default 512)")
-        ->check(integerIn(1, 1 << 14))->option_text("W")->group(InputGroup);
-    app.add_option("--height", o.height, "image height (default 512)")
-        ->check(integerIn(1, 1 << 14))->option_text("H")->group(InputGroup);
+    // A scene's own camera decides its image size: refused there rather than silently ignored.
+    app.add_option("--width", o.width, "camera rays of a --mesh: image width (default 512)")
+        ->check(integerIn(1, 1 << 14))->excludes(scene)->option_text("W")->group(InputGroup);
+    app.add_option("--height", o.height, "image height of a --mesh (default 512)")
+        ->check(integerIn(1, 1 << 14))->excludes(scene)->option_text("H")->group(InputGroup);
     app.add_option("--spp", o.spp, "jittered rays per pixel (default 4)")
         ->check(integerIn(1, 1 << 12))->option_text("S")->group(InputGroup);
 

@@ -153,6 +153,8 @@ TEST(BenchOptions, VersionAndUsageErrors) {
         {{"--no-brute", "--brute-rays=5", "--quick"}, "excludes"},
         {{"--python", "/bin/true", "--quick"}, "--python requires --plots"},
         {{"--mesh", "a.obj", "--scene", "b.xml"}, "excludes"},
+        {{"--scene", "b.xml", "--width", "64"}, "--scene excludes --width"},
+        {{"--scene", "b.xml", "--height", "64"}, "--scene excludes --height"},
         {{}, "nothing to measure"},
     };
     for (const auto &[args, message] : cases) {
