@@ -25,7 +25,8 @@
 ///     lane idx[j]); lookup8(table, idx) (L = 1, 8: lane j gets table[idx[j]] from an 8-entry
 ///     float or uint32 table, idx[j] < 8); compressStore(m, f or u, dst): the lanes of m packed
 ///     in lane order at dst, returns their count (dst must have room for L values: lanes past
-///     the count are scratch).
+///     the count are scratch); compressStoreBits(bits, f or u, dst) the same with the lanes given
+///     as a bit mask (bit j = lane j), for a mask already edited in a general register.
 #pragma once
 
 #include <nori/common.h>
@@ -113,6 +114,8 @@ inline VFloat<1> permute(VFloat<1> a, VUint<1>) { return a; }
 inline VUint<1> permute(VUint<1> a, VUint<1>) { return a; }
 inline int compressStore(VMask<1> m, VFloat<1> a, float *dst) { *dst = a.f; return m.b ? 1 : 0; }
 inline int compressStore(VMask<1> m, VUint<1> a, uint32_t *dst) { *dst = a.i; return m.b ? 1 : 0; }
+inline int compressStoreBits(unsigned m, VFloat<1> a, float *dst) { *dst = a.f; return int(m & 1u); }
+inline int compressStoreBits(unsigned m, VUint<1> a, uint32_t *dst) { *dst = a.i; return int(m & 1u); }
 
 // ---------------------------------------------------------------------------------------------
 // Eight lanes: __m256. Masks live in k registers with AVX-512VL, else in vector registers.
@@ -226,6 +229,8 @@ inline int compressStore(VMask<8> m, VUint<8> a, uint32_t *dst) {
     _mm256_storeu_si256(reinterpret_cast<__m256i *>(dst), _mm256_maskz_compress_epi32(m.k, a.v));
     return __builtin_popcount(m.k);
 }
+inline int compressStoreBits(unsigned m, VFloat<8> a, float *dst) { return compressStore(VMask<8>{__mmask8(m)}, a, dst); }
+inline int compressStoreBits(unsigned m, VUint<8> a, uint32_t *dst) { return compressStore(VMask<8>{__mmask8(m)}, a, dst); }
 #else
 // AVX2 has no compress instruction: a lane permute whose indices come from a table (byte k of
 // entry m = the lane of the k-th set bit of m), branch-free unlike a loop over the set lanes.
@@ -238,17 +243,19 @@ struct CompressTable8 {
     }
 };
 inline constexpr CompressTable8 kCompressTable8{};
-inline __m256i compressIndex(VMask<8> m) {
-    return _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kCompressTable8.idx[bits(m)])));
+inline __m256i compressIndex(unsigned m) {
+    return _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kCompressTable8.idx[m & 0xFFu])));
 }
-inline int compressStore(VMask<8> m, VFloat<8> a, float *dst) {
+inline int compressStoreBits(unsigned m, VFloat<8> a, float *dst) {
     _mm256_storeu_ps(dst, _mm256_permutevar8x32_ps(a.v, compressIndex(m)));
-    return __builtin_popcount(bits(m));
+    return __builtin_popcount(m & 0xFFu);
 }
-inline int compressStore(VMask<8> m, VUint<8> a, uint32_t *dst) {
+inline int compressStoreBits(unsigned m, VUint<8> a, uint32_t *dst) {
     _mm256_storeu_si256(reinterpret_cast<__m256i *>(dst), _mm256_permutevar8x32_epi32(a.v, compressIndex(m)));
-    return __builtin_popcount(bits(m));
+    return __builtin_popcount(m & 0xFFu);
 }
+inline int compressStore(VMask<8> m, VFloat<8> a, float *dst) { return compressStoreBits(bits(m), a, dst); }
+inline int compressStore(VMask<8> m, VUint<8> a, uint32_t *dst) { return compressStoreBits(bits(m), a, dst); }
 #endif
 #endif  // NORI_LANES_AVX2
 
@@ -325,6 +332,8 @@ inline int compressStore(VMask<16> m, VUint<16> a, uint32_t *dst) {
     _mm512_storeu_si512(dst, _mm512_maskz_compress_epi32(m.k, a.v));
     return __builtin_popcount(m.k);
 }
+inline int compressStoreBits(unsigned m, VFloat<16> a, float *dst) { return compressStore(VMask<16>{__mmask16(m)}, a, dst); }
+inline int compressStoreBits(unsigned m, VUint<16> a, uint32_t *dst) { return compressStore(VMask<16>{__mmask16(m)}, a, dst); }
 #endif  // NORI_LANES_AVX512
 
 /// Is the lane count \p L compiled into this build?

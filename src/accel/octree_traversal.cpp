@@ -4,6 +4,7 @@
 #include "lanes.h"
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <new>
 
 namespace nori {
@@ -70,6 +71,9 @@ struct SlabRay {
     float o[3], rcpNear[3], rcpFar[3];
     int neg[3];  ///< 1 where the direction's sign bit is set: the entry plane is the box's upper bound
     unsigned signs;  ///< bit a = neg[a]
+    /// Index of the entry (near) and exit (far) plane along axis a in an OctreeKept's bounds
+    /// read as six floats (lo[3] then hi[3]): loads instead of a branch per axis.
+    int keptNear[3], keptFar[3];
 
     explicit SlabRay(const Ray3f &ray) {
         signs = 0;
@@ -79,6 +83,8 @@ struct SlabRay {
             rcpNear[a] = ray.dRcp[a] * (1.0f - kSlabEps);
             rcpFar[a] = ray.dRcp[a] * (1.0f + kSlabEps);
             signs |= unsigned(neg[a]) << a;
+            keptNear[a] = a + 3 * neg[a];
+            keptFar[a] = a + 3 - 3 * neg[a];
         }
     }
 
@@ -118,9 +124,11 @@ struct SlabRay {
     }
     /// The same test against a node's kept box.
     bool hit(const OctreeKept &kept, float mint, float maxt, float &tnear) const {
+        static_assert(offsetof(OctreeKept, lo) == 0 && offsetof(OctreeKept, hi) == 3 * sizeof(float), "bounds read as six floats");
+        const float *bounds = reinterpret_cast<const float *>(&kept);
         float t0 = mint, t1 = maxt;
         for (int a = 0; a < 3; ++a) {
-            float lo = neg[a] ? kept.hi[a] : kept.lo[a], hi = neg[a] ? kept.lo[a] : kept.hi[a];
+            float lo = bounds[keptNear[a]], hi = bounds[keptFar[a]];
             float tn = (lo - o[a]) * rcpNear[a], tf = (hi - o[a]) * rcpFar[a];
             t0 = tn > t0 ? tn : t0;
             t1 = tf < t1 ? tf : t1;
@@ -176,7 +184,7 @@ struct NodeRay {
     /// the stack top (a store-forwarding stall on the hot path), and its cull test: it was
     /// entered before the closest hit, which cannot have changed since.
     int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
-             float *tnear, uint32_t near[3]) const {
+             float *tnear, uint32_t near[3], float *nearT = nullptr) const {
         const uint32_t octant = SlabRay::kOctants[code][signs];
         const U octantLanes(octant);
         int k = 0;
@@ -190,24 +198,25 @@ struct NodeRay {
                 t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
                 t1 = min(tf, t1);
             }
-            lanes::VMask<L> hit = t0 <= t1;
+            // The lanes entered, as bits (edited in a general register, not as a vector mask).
+            unsigned hit = bits(t0 <= t1);
             if constexpr (L == 8) {
                 // One block: the nearest child is the highest set lane; the others are pushed.
-                const unsigned m = bits(hit);
-                if (m == 0) return -1;
-                const int top = 31 - __builtin_clz(m);
+                if (hit == 0) return -1;
+                const int top = 31 - __builtin_clz(hit);
                 const uint32_t nearest = (7u - uint32_t(top)) ^ octant;
                 near[0] = node.child[nearest];
                 near[1] = node.count[nearest];
                 near[2] = nearest;
-                hit = hit & lanes::VMask<L>::firstN(uint32_t(top));
+                if (nearT) *nearT = lane(t0, top);
+                hit ^= 1u << top;
             }
             if constexpr (L != 8) {
-                if (const unsigned m = bits(hit)) nearSlot = lane(c, 31 - __builtin_clz(m));
+                if (hit) nearSlot = lane(c, 31 - __builtin_clz(hit));
             }
-            compressStore(hit, lookup8(node.child, c), child + k);
-            compressStore(hit, lookup8(node.count, c), count + k);
-            k += compressStore(hit, t0, tnear + k);
+            lanes::compressStoreBits(hit, lookup8(node.child, c), child + k);
+            lanes::compressStoreBits(hit, lookup8(node.count, c), count + k);
+            k += lanes::compressStoreBits(hit, t0, tnear + k);
         }
         if constexpr (L != 8) {
             // Lane by lane: the last one pushed is the nearest.
@@ -216,6 +225,7 @@ struct NodeRay {
             near[0] = child[k];
             near[1] = count[k];
             near[2] = nearSlot;
+            if (nearT) *nearT = tnear[k];
         }
         return k;
     }
@@ -270,7 +280,9 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             NORI_OCTREE_COUNT(nodes, 1);
             const OctreeNode &node = m_nodes[child];
             uint32_t near[3];
-            int pushed = simd.push(node, patternOf(count), ray.mint, tri.cullLimit(best.t), stackChild + sp, stackCount + sp, stackT + sp, near);
+            float tc = 0.0f;  // the nearest child's entry distance (asked for where kept groups need it)
+            int pushed = simd.push(node, patternOf(count), ray.mint, tri.cullLimit(best.t), stackChild + sp, stackCount + sp,
+                                   stackT + sp, near, (count & OctreeNode::kKeptMask) ? &tc : nullptr);
             // descend: the nearest child is still to be entered; pushed: siblings on the stack.
             bool descend = pushed >= 0;
             pushed = std::max(pushed, 0);
@@ -278,13 +290,11 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             // now if that box comes before the nearest child, else in order of entry among the
             // waiting children.
             if (count & OctreeNode::kKeptMask) {
-                float tc = 0.0f;
-                const bool nearIn = descend && slab.hit(node, int(near[2]), ray.mint, tri.cullLimit(best.t), tc);
                 for (uint32_t g = child;; g = m_kept[g].next) {
                     const OctreeKept &group = m_kept[g];
                     float tk;
                     if (slab.hit(group, ray.mint, tri.cullLimit(best.t), tk)) {
-                        if (!nearIn || !descend || tk <= tc) {
+                        if (!descend || tk <= tc) {
                             countedList(true, group.count,
                                         [&] { return m_triangles.intersect(tri.get(), group.offset, group.count, best); });
                             if (descend && tc > tri.cullLimit(best.t)) descend = false;  // the nearest child now lies beyond the hit
