@@ -71,9 +71,6 @@ struct SlabRay {
     float o[3], rcpNear[3], rcpFar[3];
     int neg[3];  ///< 1 where the direction's sign bit is set: the entry plane is the box's upper bound
     unsigned signs;  ///< bit a = neg[a]
-    /// Index of the entry (near) and exit (far) plane along axis a in an OctreeKept's bounds
-    /// read as six floats (lo[3] then hi[3]): loads instead of a branch per axis.
-    int keptNear[3], keptFar[3];
 
     explicit SlabRay(const Ray3f &ray) {
         signs = 0;
@@ -83,8 +80,6 @@ struct SlabRay {
             rcpNear[a] = ray.dRcp[a] * (1.0f - kSlabEps);
             rcpFar[a] = ray.dRcp[a] * (1.0f + kSlabEps);
             signs |= unsigned(neg[a]) << a;
-            keptNear[a] = a + 3 * neg[a];
-            keptFar[a] = a + 3 - 3 * neg[a];
         }
     }
 
@@ -122,13 +117,14 @@ struct SlabRay {
         tnear = t0;
         return t0 <= t1;
     }
-    /// The same test against a node's kept box.
+    /// The same test against a node's kept box, its bounds read as six floats (lo[3], hi[3]):
+    /// the entry plane along axis a is float a + 3 neg[a], a load instead of a branch per axis.
     bool hit(const OctreeKept &kept, float mint, float maxt, float &tnear) const {
         static_assert(offsetof(OctreeKept, lo) == 0 && offsetof(OctreeKept, hi) == 3 * sizeof(float), "bounds read as six floats");
         const float *bounds = reinterpret_cast<const float *>(&kept);
         float t0 = mint, t1 = maxt;
         for (int a = 0; a < 3; ++a) {
-            float lo = bounds[keptNear[a]], hi = bounds[keptFar[a]];
+            float lo = bounds[a + 3 * neg[a]], hi = bounds[a + 3 - 3 * neg[a]];
             float tn = (lo - o[a]) * rcpNear[a], tf = (hi - o[a]) * rcpFar[a];
             t0 = tn > t0 ? tn : t0;
             t1 = tf < t1 ? tf : t1;
@@ -165,6 +161,7 @@ struct NodeRay {
     using U = lanes::VUint<L>;
     F org[3], rcpNear[3], rcpFar[3];
     uint32_t entryHalf[3];  ///< 8 * neg[a]: where the entry planes start in node.box[a]
+    uint32_t exitHalf[3];   ///< 8 - entryHalf[a]: where the exit planes start
     unsigned signs;
 
     explicit NodeRay(const SlabRay &s) : signs(s.signs) {
@@ -173,6 +170,7 @@ struct NodeRay {
             rcpNear[a] = F(s.rcpNear[a]);
             rcpFar[a] = F(s.rcpFar[a]);
             entryHalf[a] = 8u * uint32_t(s.neg[a]);
+            exitHalf[a] = 8u - entryHalf[a];
         }
     }
 
@@ -184,7 +182,7 @@ struct NodeRay {
     /// the stack top (a store-forwarding stall on the hot path), and its cull test: it was
     /// entered before the closest hit, which cannot have changed since.
     int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
-             float *tnear, uint32_t near[3], float *nearT = nullptr) const {
+             float *tnear, uint32_t near[3], F &entry, int &nearLane) const {
         const uint32_t octant = SlabRay::kOctants[code][signs];
         const U octantLanes(octant);
         int k = 0;
@@ -194,7 +192,7 @@ struct NodeRay {
             F t0(mint), t1(maxt);
             for (int a = 0; a < 3; ++a) {
                 F tn = (lookup8(node.box[a] + entryHalf[a], c) - org[a]) * rcpNear[a];
-                F tf = (lookup8(node.box[a] + (8 - entryHalf[a]), c) - org[a]) * rcpFar[a];
+                F tf = (lookup8(node.box[a] + exitHalf[a], c) - org[a]) * rcpFar[a];
                 t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
                 t1 = min(tf, t1);
             }
@@ -208,7 +206,8 @@ struct NodeRay {
                 near[0] = node.child[nearest];
                 near[1] = node.count[nearest];
                 near[2] = nearest;
-                if (nearT) *nearT = lane(t0, top);
+                entry = t0;
+                nearLane = top;
                 hit ^= 1u << top;
             }
             if constexpr (L != 8) {
@@ -225,7 +224,8 @@ struct NodeRay {
             near[0] = child[k];
             near[1] = count[k];
             near[2] = nearSlot;
-            if (nearT) *nearT = tnear[k];
+            entry = F(tnear[k]);
+            nearLane = 0;
         }
         return k;
     }
@@ -242,7 +242,7 @@ public:
     float cullLimit(float best) const { return TriangleRay::cullLimitOf(best, m_cullAbs); }
     const TriangleRay &get() {
         if (!m_ready) {
-            new (m_storage) TriangleRay(m_ray);
+            new (m_storage) TriangleRay(m_ray, m_cullAbs);
             m_ready = true;
         }
         return *std::launder(reinterpret_cast<const TriangleRay *>(m_storage));
@@ -263,7 +263,36 @@ private:
 // 2000's observation); the order only affects speed, exactness comes from culling every
 // entry beyond the closest hit found so far and never stopping early.
 
+namespace {
+/// Does \p ray, starting outside \p bounds (lower bounds, then upper), miss them within the
+/// limit the root's children are tested with? The child test's operations on the same values:
+/// a ray entering any box inside \p bounds enters them too (each rounded step is monotonic in
+/// the plane, so the wider box's interval contains the narrower one's). A ray starting inside
+/// (diffuse, shadow, a camera inside) is not tested: it always enters.
+inline bool missesFromOutside(const Ray3f &ray, const float bounds[2][3]) {
+    const float o[3] = {ray.o.x(), ray.o.y(), ray.o.z()};
+    if (o[0] >= bounds[0][0] && o[0] <= bounds[1][0] && o[1] >= bounds[0][1] && o[1] <= bounds[1][1] &&
+        o[2] >= bounds[0][2] && o[2] <= bounds[1][2])
+        return false;
+    float t0 = ray.mint, t1 = TriangleRay::cullLimitOf(ray.maxt, TriangleRay::cullAbsOf(ray));
+    for (int a = 0; a < 3; ++a) {
+        const int neg = std::signbit(ray.d[a]) ? 1 : 0;
+        const float tn = (bounds[neg][a] - o[a]) * (ray.dRcp[a] * (1.0f - kSlabEps));
+        const float tf = (bounds[1 - neg][a] - o[a]) * (ray.dRcp[a] * (1.0f + kSlabEps));
+        t0 = tn > t0 ? tn : t0;
+        t1 = tf < t1 ? tf : t1;
+    }
+    return !(t0 <= t1);
+}
+} // namespace
+
 bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
+    // Camera rays beside a scanned object (most of a framing camera's) leave before the setup.
+    if (missesFromOutside(ray, m_bounds)) return false;
+    return intersectSimdInside(ray, hit);
+}
+
+bool OctreeAccel::intersectSimdInside(const Ray3f &ray, Hit &hit) const {
     const SlabRay slab(ray);
     const SimdRay simd(slab);
     LazyTriangleRay tri(ray);
@@ -280,9 +309,10 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             NORI_OCTREE_COUNT(nodes, 1);
             const OctreeNode &node = m_nodes[child];
             uint32_t near[3];
-            float tc = 0.0f;  // the nearest child's entry distance (asked for where kept groups need it)
+            SimdRay::F entry;  // entry distances, the nearest child's in lane nearLane (read where kept groups need it)
+            int nearLane = 0;
             int pushed = simd.push(node, patternOf(count), ray.mint, tri.cullLimit(best.t), stackChild + sp, stackCount + sp,
-                                   stackT + sp, near, (count & OctreeNode::kKeptMask) ? &tc : nullptr);
+                                   stackT + sp, near, entry, nearLane);
             // descend: the nearest child is still to be entered; pushed: siblings on the stack.
             bool descend = pushed >= 0;
             pushed = std::max(pushed, 0);
@@ -290,6 +320,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             // now if that box comes before the nearest child, else in order of entry among the
             // waiting children.
             if (count & OctreeNode::kKeptMask) {
+                const float tc = descend ? lane(entry, nearLane) : 0.0f;
                 for (uint32_t g = child;; g = m_kept[g].next) {
                     const OctreeKept &group = m_kept[g];
                     float tk;
@@ -360,8 +391,10 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
                     if (!group.next) break;
                 }
             uint32_t near[3];
+            SimdRay::F entry;
+            int nearLane;
             int pushed = simd.push(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
-                                   stackT + sp, near);
+                                   stackT + sp, near, entry, nearLane);
             if (pushed >= 0) {
                 sp += pushed;
                 child = near[0];

@@ -40,7 +40,7 @@ Intersector parseIntersector(const PropertyList &props, const std::string &defau
 
 const char *intersectorName(Intersector kind) { return kind == Intersector::MT ? "mt" : "watertight"; }
 
-TriangleRay::TriangleRay(const Ray3f &ray) {
+TriangleRay::TriangleRay(const Ray3f &ray, float cullAbsOfRay) : cullAbs(cullAbsOfRay) {
     // Component by component: a loop over the Eigen vectors compiled to two calls of memmove.
     o[0] = ray.o.x(), o[1] = ray.o.y(), o[2] = ray.o.z();
     d[0] = ray.d.x(), d[1] = ray.d.y(), d[2] = ray.d.z();
@@ -54,7 +54,6 @@ TriangleRay::TriangleRay(const Ray3f &ray) {
     sx = d[kx] / d[kz];
     sy = d[ky] / d[kz];
     sz = 1.0f / d[kz];
-    cullAbs = cullAbsOf(ray);
     for (int a = 0; a < 3; ++a) {
         neg[a] = std::signbit(d[a]) ? 1 : 0;
         rcpNear[a] = ray.dRcp[a] * (1.0f - 0x1p-20f);

@@ -47,7 +47,9 @@ struct TriangleRay {
     /// before they recompute t in double (needsExactT).
     float cullAbs;
 
-    explicit TriangleRay(const Ray3f &ray);
+    explicit TriangleRay(const Ray3f &ray) : TriangleRay(ray, cullAbsOf(ray)) {}
+    /// \brief The same with cullAbs (cullAbsOf(ray)) known already.
+    TriangleRay(const Ray3f &ray, float cullAbs);
 
     /// \brief Boxes entered beyond this are culled while \p best is the closest hit so far. A
     /// triangle's float t may lie below its exact t by up to the kernels' tolerance, so a box
