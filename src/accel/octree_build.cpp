@@ -78,8 +78,9 @@ constexpr double kKeptBoxCost = 0.1;
 /// quad 19 % below one group, most of the generated coplanar scene's 20-50 %.)
 constexpr double kGroupMargin = 0.85;
 
-double area(const BoundingBox3f &b) {
-    if (!b.isValid()) return 0.0;
+/// (Inlined: the kept-group search calls it for every candidate and group.)
+inline __attribute__((always_inline)) double area(const BoundingBox3f &b) {
+    if (!(b.max.x() >= b.min.x() && b.max.y() >= b.min.y() && b.max.z() >= b.min.z())) return 0.0;  // !isValid()
     Vector3f e = b.extents();
     return 2.0 * (double(e.x()) * e.y() + double(e.y()) * e.z() + double(e.z()) * e.x());
 }
@@ -409,7 +410,8 @@ OctreeNode::Pattern patternFor(Rule rule, const BoundingBox3f &cell, const Bound
             for (int k = 0; k <= 3; ++k) {
                 int first = 0, last = 0;
                 for (int i = 1; i < (1 << k); ++i) {
-                    const float plane = cell.min[a] + e[a] * float(i) / float(1 << k);
+                    // (times 2^-k: the same float as dividing by 2^k, without a division)
+                    const float plane = cell.min[a] + e[a] * float(i) * (1.0f / float(1 << k));
                     first += plane <= lo[a];
                     last += plane < hi[a];
                 }
@@ -911,8 +913,10 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             double copies, hit;
             size_t i;
         };
-        std::vector<Candidate> candidates;
-        candidates.reserve(straddlers.count);
+        // (Scratch reused by every node a thread builds: the search ends before the children
+        // are built, so a node's search never overlaps another's on one thread.)
+        thread_local std::vector<Candidate> candidates;
+        candidates.clear();
         for (const uint32_t i : straddlers) {
             unsigned m = masks[i];
             if (!(m & (m - 1))) continue;
@@ -947,7 +951,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         };
         Group groups[OctreeKept::kMaxGroups];
         int groupCount = 0;
-        std::vector<uint8_t> groupOf(candidates.size());
+        thread_local std::vector<uint8_t> groupOf;
+        groupOf.assign(candidates.size(), 0);
         auto groupCost = [&](const BoundingBox3f &b, size_t count) {
             return (boxArea > 0.0 ? std::min(1.0, area(b) / boxArea) : 1.0) * Cost::list(count);
         };
