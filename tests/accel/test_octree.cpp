@@ -399,3 +399,48 @@ TEST(Octree, NearTiesOnOverlappingFacesMatchBruteForce) {
     }
     EXPECT_EQ(differ, 0u);
 }
+
+TEST(Octree, RaysFromOutsideTouchingTheBoundsMatchBruteForce) {
+    // The closest-hit traversal lets a ray that starts outside the root's boxes and misses them go
+    // before its setup: rays grazing those bounds (aimed at the extreme corners, edges and faces of
+    // a cube, or sliding along its faces with zero direction components) must still find what
+    // brute force finds.
+    MeshData m;
+    for (int c = 0; c < 8; ++c) m.positions.emplace_back(float(c & 1), float((c >> 1) & 1), float((c >> 2) & 1));
+    const uint32_t quads[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+    for (const auto &q : quads) {
+        m.faces.push_back({q[0], q[1], q[2]});
+        m.faces.push_back({q[0], q[2], q[3]});
+    }
+    Mesh mesh(std::move(m), "cube");
+    std::vector<const Mesh *> meshes{&mesh};
+    auto octree = makeAccel("octree", PropertyList(), meshes);
+    auto brute = makeAccel("brute", PropertyList(), meshes);
+    pcg32 rng(17);
+    std::vector<Ray3f> rays;
+    for (int i = 0; i < 20000; ++i) {
+        // A target on the cube's surface: a corner, a point of an edge or of a face.
+        Point3f target(float(rng(2)), float(rng(2)), float(rng(2)));
+        const int kind = int(rng(3));
+        for (int a = 0; a < kind; ++a) target[int(rng(3))] = uniform(rng);
+        Vector3f d(uniform(rng) - 0.5f, uniform(rng) - 0.5f, uniform(rng) - 0.5f);
+        if (i % 4 == 0) d[int(rng(3))] = 0.0f;  // along a face plane
+        if (i % 8 == 0) d = Vector3f(0.0f, 0.0f, 0.0f), d[int(rng(3))] = rng(2) ? 1.0f : -1.0f;  // axis-parallel
+        if (d.isZero()) continue;
+        const float back = 2.0f + 3.0f * uniform(rng);
+        const Point3f origin = target - back * d;
+        const float maxt = i % 3 == 0 ? back : Infinity;  // ending exactly at the target, or not
+        rays.emplace_back(origin, d, 0.0f, maxt);
+    }
+    size_t outside = 0, hits = 0, differ = 0;
+    for (const Ray3f &ray : rays) {
+        outside += (ray.o.array() < 0.0f).any() || (ray.o.array() > 1.0f).any();
+        Hit a, b;
+        const bool ha = octree->intersect(ray, a), hb = brute->intersect(ray, b);
+        hits += hb;
+        differ += ha != hb || (ha && (a.t != b.t || a.prim != b.prim || a.u != b.u || a.v != b.v));
+    }
+    EXPECT_GT(outside, rays.size() / 2);
+    EXPECT_GT(hits, rays.size() / 4);
+    EXPECT_EQ(differ, 0u);
+}
