@@ -161,9 +161,6 @@ protected:
 private:
     // Traversals (octree_traversal.cpp).
     bool intersectSimd(const Ray3f &ray, Hit &hit) const;
-    /// The traversal of intersectSimd() for rays that may enter the root's boxes (out of line:
-    /// the others skip its setup).
-    [[gnu::noinline]] bool intersectSimdInside(const Ray3f &ray, Hit &hit) const;
     bool occludedSimd(const Ray3f &ray) const;
     bool intersectSorted(const Ray3f &ray, Hit &hit) const;
     bool occludedSorted(const Ray3f &ray) const;
@@ -185,10 +182,6 @@ private:
     std::vector<OctreeKept> m_kept;
     uint32_t m_rootCount = 0;
     TriangleStore m_triangles;
-    /// The union of the root's child boxes and kept-group boxes (lower bounds, then upper):
-    /// a ray that misses it enters nothing, and the closest-hit traversal lets it go before
-    /// its per-ray setup (most camera rays beside a scanned object). Empty: +inf, -inf.
-    float m_bounds[2][3] = {{Infinity, Infinity, Infinity}, {-Infinity, -Infinity, -Infinity}};
 
     // Statistics of the last build.
     struct Stats {

@@ -90,7 +90,6 @@ void OctreeAccel::buildImpl() {
     m_nodes.clear();
     m_kept.clear();
     m_rootCount = 0;
-    for (int a = 0; a < 3; ++a) m_bounds[0][a] = Infinity, m_bounds[1][a] = -Infinity;
     m_stats = Stats();
     const uint32_t total = triangleCount();
 
@@ -162,22 +161,6 @@ void OctreeAccel::buildImpl() {
     m_rootCount = innerCount(*root);
     m_triangles.reset(m_intersector, root->subtreeWords);
     flatten(*root, 0, 0, uint32_t(root->subtreeNodes), Layout{m_nodes, m_kept, m_triangles, vertices.data()});
-
-    // Everything a ray can enter lies in the root's child boxes and kept boxes.
-    for (int a = 0; a < 3; ++a) {
-        m_bounds[0][a] = Infinity;
-        m_bounds[1][a] = -Infinity;
-        for (int c = 0; c < 8; ++c) {  // (an empty child's +inf, -inf change nothing)
-            m_bounds[0][a] = std::min(m_bounds[0][a], m_nodes[0].box[a][c]);
-            m_bounds[1][a] = std::max(m_bounds[1][a], m_nodes[0].box[a][8 + c]);
-        }
-        if (m_rootCount & OctreeNode::kKeptMask)
-            for (uint32_t g = 0;; g = m_kept[g].next) {
-                m_bounds[0][a] = std::min(m_bounds[0][a], m_kept[g].lo[a]);
-                m_bounds[1][a] = std::max(m_bounds[1][a], m_kept[g].hi[a]);
-                if (!m_kept[g].next) break;
-            }
-    }
 
     // Statistics over the temporary tree (serial; a few ten thousand nodes).
     m_stats.refs = root->subtreeRefs;

@@ -263,36 +263,7 @@ private:
 // 2000's observation); the order only affects speed, exactness comes from culling every
 // entry beyond the closest hit found so far and never stopping early.
 
-namespace {
-/// Does \p ray, starting outside \p bounds (lower bounds, then upper), miss them within the
-/// limit the root's children are tested with? The child test's operations on the same values:
-/// a ray entering any box inside \p bounds enters them too (each rounded step is monotonic in
-/// the plane, so the wider box's interval contains the narrower one's). A ray starting inside
-/// (diffuse, shadow, a camera inside) is not tested: it always enters.
-inline bool missesFromOutside(const Ray3f &ray, const float bounds[2][3]) {
-    const float o[3] = {ray.o.x(), ray.o.y(), ray.o.z()};
-    if (o[0] >= bounds[0][0] && o[0] <= bounds[1][0] && o[1] >= bounds[0][1] && o[1] <= bounds[1][1] &&
-        o[2] >= bounds[0][2] && o[2] <= bounds[1][2])
-        return false;
-    float t0 = ray.mint, t1 = TriangleRay::cullLimitOf(ray.maxt, TriangleRay::cullAbsOf(ray));
-    for (int a = 0; a < 3; ++a) {
-        const int neg = std::signbit(ray.d[a]) ? 1 : 0;
-        const float tn = (bounds[neg][a] - o[a]) * (ray.dRcp[a] * (1.0f - kSlabEps));
-        const float tf = (bounds[1 - neg][a] - o[a]) * (ray.dRcp[a] * (1.0f + kSlabEps));
-        t0 = tn > t0 ? tn : t0;
-        t1 = tf < t1 ? tf : t1;
-    }
-    return !(t0 <= t1);
-}
-} // namespace
-
 bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
-    // Camera rays beside a scanned object (most of a framing camera's) leave before the setup.
-    if (missesFromOutside(ray, m_bounds)) return false;
-    return intersectSimdInside(ray, hit);
-}
-
-bool OctreeAccel::intersectSimdInside(const Ray3f &ray, Hit &hit) const {
     const SlabRay slab(ray);
     const SimdRay simd(slab);
     LazyTriangleRay tri(ray);

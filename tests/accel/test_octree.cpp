@@ -401,10 +401,10 @@ TEST(Octree, NearTiesOnOverlappingFacesMatchBruteForce) {
 }
 
 TEST(Octree, RaysFromOutsideTouchingTheBoundsMatchBruteForce) {
-    // The closest-hit traversal lets a ray that starts outside the root's boxes and misses them go
-    // before its setup: rays grazing those bounds (aimed at the extreme corners, edges and faces of
-    // a cube, or sliding along its faces with zero direction components) must still find what
-    // brute force finds.
+    // Rays from outside grazing the scene's bounds (aimed at the extreme corners, edges and faces
+    // of a cube, or sliding along its faces with zero direction components, some ending exactly at
+    // the target) enter the root's boxes only through the slab test's widening: they must still
+    // find what brute force finds.
     MeshData m;
     for (int c = 0; c < 8; ++c) m.positions.emplace_back(float(c & 1), float((c >> 1) & 1), float((c >> 2) & 1));
     const uint32_t quads[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
