@@ -6,6 +6,7 @@
 #include <scene_geometry.h>
 #include <nori/scene.h>
 #include <tbb/global_control.h>
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -25,7 +26,7 @@ double cpuNs() {
 
 int main(int argc, char **argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: nori-raytime SCENE.xml primary|diffuse|shadow [repeats] [spp]\n");
+        std::fprintf(stderr, "usage: nori-raytime SCENE.xml primary|diffuse|shadow|build [repeats] [spp]\n");
         return 2;
     }
     // One thread, as nori-bench --threads 1 (the build's tasks would run on other threads).
@@ -37,11 +38,28 @@ int main(int argc, char **argv) {
     std::vector<const Mesh *> meshes;
     for (const auto &m : scene->meshes()) meshes.push_back(m.get());
     MeshTable table(meshes);
-    OctreeAccel octree{PropertyList()};
+    // NORI_LEAFSIZE: the octree's leafSize (for experiments; default: the accelerator's).
+    PropertyList props;
+    if (const char *ls = std::getenv("NORI_LEAFSIZE")) props.setInteger("leafSize", std::atoi(ls));
+    OctreeAccel octree{props};
     for (const Mesh *m : meshes) octree.addMesh(m);
     auto t0 = cpuNs();
     octree.build();
     auto t1 = cpuNs();
+    if (set == "build") {
+        // The build alone, \p repeats times: the median thread CPU time.
+        std::vector<double> ms;
+        for (int k = 0; k < repeats; ++k) {
+            OctreeAccel again{props};
+            for (const Mesh *m : meshes) again.addMesh(m);
+            const double b0 = cpuNs();
+            again.build();
+            ms.push_back((cpuNs() - b0) * 1e-6);
+        }
+        std::sort(ms.begin(), ms.end());
+        std::printf("build median %.2f ms (min %.2f) of %d\n", ms[ms.size() / 2], ms.front(), repeats);
+        return 0;
+    }
     std::vector<Ray3f> primary = cameraRays(scene->camera(), spp, 0x6e6f7269u);
     ClosestHitFunction hit = [&](const Ray3f &r, Hit &h) { return octree.intersect(r, h); };
     std::vector<Ray3f> rays = set == "primary" ? primary
