@@ -78,8 +78,9 @@ constexpr double kKeptBoxCost = 0.1;
 /// quad 19 % below one group, most of the generated coplanar scene's 20-50 %.)
 constexpr double kGroupMargin = 0.85;
 
-double area(const BoundingBox3f &b) {
-    if (!b.isValid()) return 0.0;
+/// (Inlined: the kept-group search calls it for every candidate and group.)
+inline __attribute__((always_inline)) double area(const BoundingBox3f &b) {
+    if (!(b.max.x() >= b.min.x() && b.max.y() >= b.min.y() && b.max.z() >= b.min.z())) return 0.0;  // !isValid()
     Vector3f e = b.extents();
     return 2.0 * (double(e.x()) * e.y() + double(e.y()) * e.z() + double(e.z()) * e.x());
 }
@@ -255,6 +256,24 @@ struct Classifier {
         }
         return (m & (m - 1)) ? 0u : m;
     }
+    /// The closed child cells that hold the point \p p (both sides of a plane it lies on; none
+    /// outside the cell \p lo, \p hi): along each axis the slabs from the planes below \p p to
+    /// those at or below it, BoundingBox3f::contains() of every cell at once.
+    unsigned cellsHolding(const Point3f &p, const Point3f &lo, const Point3f &hi) const {
+        if (!(p.x() >= lo.x() && p.y() >= lo.y() && p.z() >= lo.z() && p.x() <= hi.x() && p.y() <= hi.y() &&
+              p.z() <= hi.z()))
+            return 0;
+        unsigned m = 0xFFu;
+        for (int a = 0; a < 3; ++a) {
+            int first = 0, last = 0;
+            for (int k = 0; k < planes[a]; ++k) {
+                first += plane[a][k] < p[a];
+                last += plane[a][k] <= p[a];
+            }
+            m &= range[a][first][last];
+        }
+        return m;
+    }
     /// Slot whose cell holds the point \p p (slotOfCentre() of a box's centre).
     int slotOfPoint(const float p[3]) const {
         int c = 0;
@@ -391,7 +410,8 @@ OctreeNode::Pattern patternFor(Rule rule, const BoundingBox3f &cell, const Bound
             for (int k = 0; k <= 3; ++k) {
                 int first = 0, last = 0;
                 for (int i = 1; i < (1 << k); ++i) {
-                    const float plane = cell.min[a] + e[a] * float(i) / float(1 << k);
+                    // (times 2^-k: the same float as dividing by 2^k, without a division)
+                    const float plane = cell.min[a] + e[a] * float(i) * (1.0f / float(1 << k));
                     first += plane <= lo[a];
                     last += plane < hi[a];
                 }
@@ -534,16 +554,19 @@ void summarize(TempNode &node) {
 /// those two cells, so it touches both. Otherwise a corner inside a cell settles that cell,
 /// and the separating-axis test decides the rest.
 __attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const float lo[3], const float hi[3],
-                                          const BoundingBox3f &cell, const BoundingBox3f cells[8], unsigned mask) {
+                                          const BoundingBox3f &cell, const BoundingBox3f cells[8],
+                                          const Classifier &classifier, unsigned mask) {
     bool inside = lo[0] >= cell.min.x() && lo[1] >= cell.min.y() && lo[2] >= cell.min.z() && hi[0] <= cell.max.x() &&
                   hi[1] <= cell.max.y() && hi[2] <= cell.max.z();
     if (inside && __builtin_popcount(mask) == 2) return mask;
-    unsigned kept = 0;
-    for (unsigned m = mask; m; m &= m - 1) {
+    // The cells holding a corner, for all cells at once (the cells' own contains() tests, one
+    // per corner and cell, were a third of this function's time).
+    unsigned kept = mask & (classifier.cellsHolding(v[0], cell.min, cell.max) |
+                            classifier.cellsHolding(v[1], cell.min, cell.max) |
+                            classifier.cellsHolding(v[2], cell.min, cell.max));
+    for (unsigned m = mask & ~kept; m; m &= m - 1) {
         int c = __builtin_ctz(m);
-        if (cells[c].contains(v[0]) || cells[c].contains(v[1]) || cells[c].contains(v[2]) ||
-            triangleOverlapsBox(v[0], v[1], v[2], cells[c]))
-            kept |= 1u << c;
+        if (triangleOverlapsBox(v[0], v[1], v[2], cells[c])) kept |= 1u << c;
     }
     return kept ? kept : mask;  // never lose a triangle to rounding
 }
@@ -673,7 +696,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             mask = 1u << classifier->slotOfCentre(r.lo, r.hi);
         } else {
             mask = maskOf(r);
-            if ((mask & (mask - 1)) && in.exact) mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, mask);
+            if ((mask & (mask - 1)) && in.exact) mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, *classifier, mask);
         }
         masks[i] = uint8_t(mask);
         return mask;
@@ -805,7 +828,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                     for (size_t j = 0; j < k; ++j) {
                         const uint32_t i = straddle[j];
                         const Ref &r = ids[i];
-                        const unsigned mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, masks[i]);
+                        const unsigned mask = refine(in.vertices[r.id], r.lo, r.hi, cell, cells, *classifier, masks[i]);
                         masks[i] = uint8_t(mask);
                         gm.add(r, mask, clips);
                         multi.data[multi.count++] = i;
@@ -890,8 +913,10 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             double copies, hit;
             size_t i;
         };
-        std::vector<Candidate> candidates;
-        candidates.reserve(straddlers.count);
+        // (Scratch reused by every node a thread builds: the search ends before the children
+        // are built, so a node's search never overlaps another's on one thread.)
+        thread_local std::vector<Candidate> candidates;
+        candidates.clear();
         for (const uint32_t i : straddlers) {
             unsigned m = masks[i];
             if (!(m & (m - 1))) continue;
@@ -926,7 +951,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         };
         Group groups[OctreeKept::kMaxGroups];
         int groupCount = 0;
-        std::vector<uint8_t> groupOf(candidates.size());
+        thread_local std::vector<uint8_t> groupOf;
+        groupOf.assign(candidates.size(), 0);
         auto groupCost = [&](const BoundingBox3f &b, size_t count) {
             return (boxArea > 0.0 ? std::min(1.0, area(b) / boxArea) : 1.0) * Cost::list(count);
         };
