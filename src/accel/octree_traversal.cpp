@@ -4,7 +4,6 @@
 #include "lanes.h"
 #include <algorithm>
 #include <cmath>
-#include <cstddef>
 #include <new>
 
 namespace nori {
@@ -117,14 +116,11 @@ struct SlabRay {
         tnear = t0;
         return t0 <= t1;
     }
-    /// The same test against a node's kept box, its bounds read as six floats (lo[3], hi[3]):
-    /// the entry plane along axis a is float a + 3 neg[a], a load instead of a branch per axis.
+    /// The same test against a node's kept box.
     bool hit(const OctreeKept &kept, float mint, float maxt, float &tnear) const {
-        static_assert(offsetof(OctreeKept, lo) == 0 && offsetof(OctreeKept, hi) == 3 * sizeof(float), "bounds read as six floats");
-        const float *bounds = reinterpret_cast<const float *>(&kept);
         float t0 = mint, t1 = maxt;
         for (int a = 0; a < 3; ++a) {
-            float lo = bounds[a + 3 * neg[a]], hi = bounds[a + 3 - 3 * neg[a]];
+            float lo = neg[a] ? kept.hi[a] : kept.lo[a], hi = neg[a] ? kept.lo[a] : kept.hi[a];
             float tn = (lo - o[a]) * rcpNear[a], tf = (hi - o[a]) * rcpFar[a];
             t0 = tn > t0 ? tn : t0;
             t1 = tf < t1 ? tf : t1;
