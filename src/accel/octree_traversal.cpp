@@ -157,7 +157,6 @@ struct NodeRay {
     using U = lanes::VUint<L>;
     F org[3], rcpNear[3], rcpFar[3];
     uint32_t entryHalf[3];  ///< 8 * neg[a]: where the entry planes start in node.box[a]
-    uint32_t exitHalf[3];   ///< 8 - entryHalf[a]: where the exit planes start
     unsigned signs;
 
     explicit NodeRay(const SlabRay &s) : signs(s.signs) {
@@ -166,7 +165,6 @@ struct NodeRay {
             rcpNear[a] = F(s.rcpNear[a]);
             rcpFar[a] = F(s.rcpFar[a]);
             entryHalf[a] = 8u * uint32_t(s.neg[a]);
-            exitHalf[a] = 8u - entryHalf[a];
         }
     }
 
@@ -188,7 +186,7 @@ struct NodeRay {
             F t0(mint), t1(maxt);
             for (int a = 0; a < 3; ++a) {
                 F tn = (lookup8(node.box[a] + entryHalf[a], c) - org[a]) * rcpNear[a];
-                F tf = (lookup8(node.box[a] + exitHalf[a], c) - org[a]) * rcpFar[a];
+                F tf = (lookup8(node.box[a] + (8 - entryHalf[a]), c) - org[a]) * rcpFar[a];
                 t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
                 t1 = min(tf, t1);
             }
