@@ -84,6 +84,14 @@ MeshData boxesOnGround(MeshData &ground) {
     return boxes;
 }
 
+/// A generated scene of \p shape with about \p triangles triangles from \p seed.
+gen::GeneratedScene generated(const std::string &shape, uint64_t triangles, uint64_t seed) {
+    gen::GenParams params;
+    params.triangles = triangles;
+    params.seed = seed;
+    return gen::generateScene(shape, params);
+}
+
 } // namespace
 
 // The separating-axis test that decides which cells receive a triangle, against clipping:
@@ -220,10 +228,7 @@ TEST(OctreeCells, BisectionsFollowTheTrianglesNotOnlyTheCell) {
 // horizontal slabs, the only planes that reach the table (4 of the 14 nodes over near-cubic
 // content were slabs, and the tabletop's shadow rays visited 37 % more nodes).
 TEST(OctreeCells, SmallObjectsInAHugeCellAreCutInEveryDirection) {
-    gen::GenParams params;
-    params.triangles = 20000;
-    params.seed = 3;
-    gen::GeneratedScene scene = gen::generateScene("tabletop", params);
+    gen::GeneratedScene scene = generated("tabletop", 20000, 3);
     Mesh mesh(scene.mesh, "tabletop");
     auto accel = buildOctree("sah", {&mesh});
     size_t nodes = 0, slabs = 0;
@@ -392,10 +397,7 @@ TEST(OctreeSeedRule, EachLaterSiblingCountsOneLevelDeeper) {
 // on these shapes), and every node's children lie inside the node.
 TEST(OctreeBounds, ReferencesAndBytesPerTriangleOnEveryShape) {
     for (const gen::ShapeInfo &info : gen::shapes()) {
-        gen::GenParams params;
-        params.triangles = std::max<uint64_t>(info.minTriangles, 20000);
-        params.seed = 7;
-        gen::GeneratedScene scene = gen::generateScene(info.name, params);
+        gen::GeneratedScene scene = generated(info.name, std::max<uint64_t>(info.minTriangles, 20000), 7);
         Mesh mesh(scene.mesh, info.name);
         auto accel = buildOctree("sah", {&mesh});
         auto s = statsOf(*accel);
@@ -561,10 +563,7 @@ TEST(OctreeLeaves, ChunkBoxesStayInsideTheLeaf) {
 // references below it; with leafSize 8 (the earlier default) it has such nodes, so the check
 // sees what the default decides.
 TEST(OctreeLeaves, NoInnerNodeHoldsOneChunkOrLess) {
-    gen::GenParams params;
-    params.triangles = 20000;
-    params.seed = 7;
-    gen::GeneratedScene scene = gen::generateScene("city", params);
+    gen::GeneratedScene scene = generated("city", 20000, 7);
     Mesh mesh(scene.mesh, "city");
     auto smallInnerNodes = [&](int leafSize) {
         auto accel = buildOctree("sah", {&mesh}, -1, leafSize);
