@@ -170,17 +170,17 @@ struct NodeRay {
 
     /// The children of \p node (reached through a reference with pattern \p code) that the ray
     /// enters within [mint, maxt]: the nearest in the ray's octant order goes to \p near (child
-    /// and count, as in OctreeNode, and its slot), the others onto the stack, farthest first, with their entry
-    /// distances. Returns how many were pushed, or -1 when the ray enters no child. Handing the
+    /// and count, as in OctreeNode), the others onto the stack, farthest first, with their entry
+    /// distances; \p entry holds the entry distances of the last block tested, the nearest child's
+    /// in lane \p nearLane. Returns how many were pushed, or -1 when the ray enters no child. Handing the
     /// nearest child over in registers spares the traversal a store and an immediate reload of
     /// the stack top (a store-forwarding stall on the hot path), and its cull test: it was
     /// entered before the closest hit, which cannot have changed since.
     int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
-             float *tnear, uint32_t near[3], F &entry, int &nearLane) const {
+             float *tnear, uint32_t near[2], F &entry, int &nearLane) const {
         const uint32_t octant = SlabRay::kOctants[code][signs];
         const U octantLanes(octant);
         int k = 0;
-        uint32_t nearSlot = 0;  // (lane by lane: the slot of the last child pushed)
         for (int j = 0; j < 8; j += L) {
             const U c = U::loadu(kBackToFront + j) ^ octantLanes;
             F t0(mint), t1(maxt);
@@ -199,13 +199,9 @@ struct NodeRay {
                 const uint32_t nearest = (7u - uint32_t(top)) ^ octant;
                 near[0] = node.child[nearest];
                 near[1] = node.count[nearest];
-                near[2] = nearest;
                 entry = t0;
                 nearLane = top;
                 hit ^= 1u << top;
-            }
-            if constexpr (L != 8) {
-                if (hit) nearSlot = lane(c, 31 - __builtin_clz(hit));
             }
             lanes::compressStoreBits(hit, lookup8(node.child, c), child + k);
             lanes::compressStoreBits(hit, lookup8(node.count, c), count + k);
@@ -217,7 +213,6 @@ struct NodeRay {
             --k;
             near[0] = child[k];
             near[1] = count[k];
-            near[2] = nearSlot;
             entry = F(tnear[k]);
             nearLane = 0;
         }
@@ -273,7 +268,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
         if (count & OctreeNode::kInner) {
             NORI_OCTREE_COUNT(nodes, 1);
             const OctreeNode &node = m_nodes[child];
-            uint32_t near[3];
+            uint32_t near[2];
             SimdRay::F entry;  // entry distances, the nearest child's in lane nearLane (read where kept groups need it)
             int nearLane = 0;
             int pushed = simd.push(node, patternOf(count), ray.mint, tri.cullLimit(best.t), stackChild + sp, stackCount + sp,
@@ -355,7 +350,7 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
                         return true;
                     if (!group.next) break;
                 }
-            uint32_t near[3];
+            uint32_t near[2];
             SimdRay::F entry;
             int nearLane;
             int pushed = simd.push(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
