@@ -184,11 +184,27 @@ struct NodeRay {
         for (int j = 0; j < 8; j += L) {
             const U c = U::loadu(kBackToFront + j) ^ octantLanes;
             F t0(mint), t1(maxt);
-            for (int a = 0; a < 3; ++a) {
-                F tn = (lookup8(node.box[a] + entryHalf[a], c) - org[a]) * rcpNear[a];
-                F tf = (lookup8(node.box[a] + (8 - entryHalf[a]), c) - org[a]) * rcpFar[a];
-                t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
-                t1 = min(tf, t1);
+            if constexpr (L == 8) {
+                // The slabs in the node's own child order, permuted into the ray's order only at
+                // the end: the box loads and the arithmetic on them need only the node's address,
+                // not the octant (looked up from the reference's pattern, a chain of its own), so
+                // the two run side by side. Lane-wise operations commute with the permutation:
+                // the same bits as permuting first.
+                for (int a = 0; a < 3; ++a) {
+                    F tn = (F::loadu(node.box[a] + entryHalf[a]) - org[a]) * rcpNear[a];
+                    F tf = (F::loadu(node.box[a] + (8 - entryHalf[a])) - org[a]) * rcpFar[a];
+                    t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
+                    t1 = min(tf, t1);
+                }
+                t0 = permute(t0, c);
+                t1 = permute(t1, c);
+            } else {
+                for (int a = 0; a < 3; ++a) {
+                    F tn = (lookup8(node.box[a] + entryHalf[a], c) - org[a]) * rcpNear[a];
+                    F tf = (lookup8(node.box[a] + (8 - entryHalf[a]), c) - org[a]) * rcpFar[a];
+                    t0 = max(tn, t0);
+                    t1 = min(tf, t1);
+                }
             }
             // The lanes entered, as bits (edited in a general register, not as a vector mask).
             unsigned hit = bits(t0 <= t1);
