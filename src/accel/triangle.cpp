@@ -54,7 +54,7 @@ TriangleRay::TriangleRay(const Ray3f &ray, float cullAbsOfRay) : cullAbs(cullAbs
     if (d[kz] < 0.0f) std::swap(kx, ky);
     sx = d[kx] / d[kz];
     sy = d[ky] / d[kz];
-    sz = 1.0f / d[kz];
+    sz = ray.dRcp[kz];  // 1 / d[kz], the same bits (Ray3f::update), one division fewer
     for (int a = 0; a < 3; ++a) {
         neg[a] = std::signbit(d[a]) ? 1 : 0;
         rcpNear[a] = ray.dRcp[a] * (1.0f - 0x1p-20f);

@@ -29,6 +29,7 @@
 #include <pcg_random.hpp>
 
 #include <cstdio>
+#include <cstring>
 
 using namespace nori;
 using namespace nori::decisions;
@@ -66,6 +67,40 @@ TEST(TriangleDecisions, RaySetupIsTheShearOfWoopEtAl) {
         EXPECT_EQ(r.sy, s.sy) << d.transpose();
         EXPECT_EQ(r.sz, s.sz) << d.transpose();
     }
+}
+
+TEST(TriangleDecisions, CullToleranceIsTheOriginOverTheLargestDirectionComponent) {
+    // cullAbsOf takes 1 / |d|_inf from the ray's dRcp (no division): it must equal
+    // 2^-18 |o|_inf / |d|_inf as a division rounds it, on every direction, also with zeros,
+    // ties, both signs, subnormal and huge components.
+    pcg32 rng(17);
+    auto component = [&](uint32_t kind) {
+        const float sign = rng(2) ? -1.0f : 1.0f;
+        switch (kind) {
+        case 0: return sign * 0.0f;
+        case 1: return sign * std::ldexp(1.0f + float(rng(1u << 20)) * 0x1p-20f, -140);  // subnormal
+        case 2: return sign * std::ldexp(1.0f + float(rng(1u << 20)) * 0x1p-20f, 100);
+        case 3: return sign * 1.0f;
+        default: return sign * std::ldexp(1.0f + float(rng(1u << 23)) * 0x1p-23f, int(rng(40)) - 20);
+        }
+    };
+    int checked = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Vector3f d(component(rng(6)), component(rng(6)), component(rng(6)));
+        if (d.isZero()) continue;
+        const Point3f o(component(rng(6)), component(rng(6)), component(rng(6)));
+        const Ray3f ray(o, d);
+        const float maxO = std::max({std::abs(o.x()), std::abs(o.y()), std::abs(o.z())});
+        const float maxD = std::max({std::abs(d.x()), std::abs(d.y()), std::abs(d.z())});
+        const float expected = 0x1p-18f * maxO * std::abs(1.0f / maxD);
+        const float got = TriangleRay::cullAbsOf(ray);
+        EXPECT_EQ(std::memcmp(&got, &expected, sizeof(float)), 0)
+            << d.transpose() << " / " << o.transpose() << ": " << got << " != " << expected;
+        const float set = TriangleRay(ray).cullAbs;
+        EXPECT_EQ(std::memcmp(&set, &got, sizeof(float)), 0);
+        ++checked;
+    }
+    EXPECT_GT(checked, 19000);
 }
 
 TEST(TriangleDecisions, WatertightDecisionsAreExactForTheRealRayAndTriangle) {
