@@ -2,7 +2,7 @@
 /// \brief "clutter": stones at wildly mixed scales on a mountainside: pebbles of 2 cm next to
 /// the camera, rocks, boulders of 40 m further out, a mountain 500 high in the distance, every
 /// stone with the same tessellation (as one scanned rock placed at many scales). Triangle
-/// sizes span five orders of magnitude, and the small ones crowd one corner of the bounds.
+/// edges span four orders of magnitude, and the small ones crowd a speck of the bounds.
 #include "shape_generators.h"
 #include "gen_random.h"
 #include "mesh_builder.h"

@@ -29,8 +29,8 @@ GeneratedScene generateTowers(const GenParams &params) {
         lots.erase(std::find(lots.begin(), lots.end(), lot));
         float cx = -40.0f + 40.0f * float(lot % 3), cz = -40.0f + 40.0f * float(lot / 3);
         float height = k == 0 ? 900.0f : rng.range(120.0f, 520.0f);
-        towers.push_back({cx + rng.range(-4.0f, 4.0f), cz + rng.range(-4.0f, 4.0f), rng.range(8.0f, 14.0f),
-                          rng.range(8.0f, 14.0f), height});
+        towers.push_back({cx + rng.range(-4.0f, 4.0f), cz + rng.range(-4.0f, 4.0f), rng.range(10.0f, 17.0f),
+                          rng.range(10.0f, 17.0f), height});
     }
     // Storeys 4 high; a small budget groups several storeys under one slab, a large one
     // spends the rest on vertical window fins (12 triangles each) spread over every facade.
@@ -82,10 +82,10 @@ GeneratedScene generateTowers(const GenParams &params) {
     s.shape = "towers";
     s.description = "seven skyscrapers up to 900 high on a plaza 120 across (slabs, glass, fins)";
     s.mesh = b.take();
-    // A portrait frame from across the street, looking up at the whole cluster.
-    s.camera.origin = Point3f(420.0f, 120.0f, 620.0f);
-    s.camera.target = Point3f(0.0f, 430.0f, 0.0f);
-    s.camera.fov = 40.0f;
+    // A portrait frame from the street, looking up at the whole cluster.
+    s.camera.origin = Point3f(120.0f, 2.0f, 170.0f);
+    s.camera.target = Point3f(0.0f, 300.0f, 0.0f);
+    s.camera.fov = 45.0f;
     s.camera.width = 360;
     s.camera.height = 640;
     s.camera.nearClip = 0.1f;
