@@ -3,7 +3,10 @@
 /// plain arithmetic only; no std:: distributions, whose output is implementation-defined).
 #pragma once
 
+#include <nori/common.h>
 #include <pcg_random.hpp>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace nori::gen {
@@ -19,6 +22,14 @@ public:
     float range(float lo, float hi) { return lo + (hi - lo) * uniform(); }
     /// \brief Uniform integer in [0, n).
     uint32_t below(uint32_t n) { return m_rng(n); }
+    /// \brief Uniformly random direction (Archimedes: z uniform in [-1, 1], angle uniform).
+    Vector3f direction() {
+        float z = range(-1.0f, 1.0f), phi = range(0.0f, 2.0f * Pi);
+        float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        return Vector3f(r * std::cos(phi), r * std::sin(phi), z);
+    }
+    /// \brief Log-uniform in [lo, hi): as many draws in every decade.
+    float logRange(float lo, float hi) { return lo * std::pow(hi / lo, uniform()); }
 
 private:
     pcg32 m_rng;

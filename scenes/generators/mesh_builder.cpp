@@ -92,6 +92,19 @@ void MeshBuilder::cylinder(const Point3f &baseCenter, float radius, float height
     }
 }
 
+void MeshBuilder::tube(const Point3f &from, const Point3f &to, float r0, float r1, int segments) {
+    Vector3f axis = (to - from).normalized();
+    // Any frame around the axis will do; it depends on the axis alone, so two tubes that
+    // continue one another along the same axis produce the same ring between them.
+    Vector3f helper = std::abs(axis.y()) < 0.9f ? Vector3f(0, 1, 0) : Vector3f(1, 0, 0);
+    Vector3f u = axis.cross(helper).normalized(), v = axis.cross(u);
+    auto ring = [&](const Point3f &c, float r, int i) {
+        float phi = 2.0f * Pi * float(i % segments) / float(segments);
+        return Point3f(c + r * (std::cos(phi) * u + std::sin(phi) * v));
+    };
+    for (int i = 0; i < segments; ++i) quad(ring(from, r0, i), ring(from, r0, i + 1), ring(to, r1, i + 1), ring(to, r1, i));
+}
+
 MeshData MeshBuilder::take() {
     MeshData out = std::move(m_data);
     m_data = MeshData();

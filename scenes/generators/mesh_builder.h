@@ -29,6 +29,9 @@ public:
     void sphere(const Point3f &center, float radius, int n);
     /// \brief Closed cylinder along +y: \p segments side quads, both caps as fans.
     void cylinder(const Point3f &baseCenter, float radius, float height, int segments);
+    /// \brief Open tapered tube from \p from (radius \p r0) to \p to (radius \p r1):
+    /// \p segments side quads, no caps. Straight chains of tubes along one axis weld.
+    void tube(const Point3f &from, const Point3f &to, float r0, float r1, int segments);
 
     uint64_t triangleCount() const { return m_data.faces.size(); }
     /// \brief The mesh so far; the builder is empty afterwards.

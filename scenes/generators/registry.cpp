@@ -17,6 +17,12 @@ const std::vector<ShapeInfo> &shapes() {
         {"tabletop", "tiny objects on a table on a huge ground quad", 25000, 2000, &generateTabletop},
         {"stadium", "teapot in a stadium: small detailed object in a huge bowl", 100000, 5000, &generateStadium},
         {"coplanar", "overlapping coplanar faces on the split planes", 20000, 5000, &generateCoplanar},
+        {"forest", "trees of mixed sizes (trunks, branches, leaf clusters) on terrain", 120000, 3000, &generateForest},
+        {"office", "many small rooms of thin walls with doors, camera down a corridor", 120000, 3000, &generateOffice},
+        {"towers", "skyscrapers up to 900 high on a plaza 120 across, portrait view", 120000, 1000, &generateTowers},
+        {"clutter", "stones from 2 cm to 40 m on a mountainside", 120000, 2000, &generateClutter},
+        {"hair", "head with thousands of long thin strands falling over it", 120000, 2000, &generateHair},
+        {"sparse", "asteroid field: rocks far apart, cut by a tilted ring of huge triangles", 120000, 2000, &generateSparse},
     };
     return table;
 }

@@ -17,5 +17,11 @@ GeneratedScene generateWide(const GenParams &params);
 GeneratedScene generateTabletop(const GenParams &params);
 GeneratedScene generateStadium(const GenParams &params);
 GeneratedScene generateCoplanar(const GenParams &params);
+GeneratedScene generateForest(const GenParams &params);
+GeneratedScene generateOffice(const GenParams &params);
+GeneratedScene generateTowers(const GenParams &params);
+GeneratedScene generateClutter(const GenParams &params);
+GeneratedScene generateHair(const GenParams &params);
+GeneratedScene generateSparse(const GenParams &params);
 
 } // namespace nori::gen

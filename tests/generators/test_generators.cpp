@@ -98,11 +98,13 @@ TEST_P(EveryShape, CameraSeesTheScene) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, EveryShape, testing::Values("city", "grass", "heightfield", "sphere", "room", "wide",
-                                                             "tabletop", "stadium", "coplanar"));
+                                                             "tabletop", "stadium", "coplanar", "forest", "office",
+                                                             "towers", "clutter", "hair", "sparse"));
 
 TEST(Generators, EveryRegisteredShapeIsTested) {
-    std::vector<std::string> tested = {"city", "grass", "heightfield", "sphere", "room", "wide", "tabletop", "stadium",
-                                       "coplanar"};
+    std::vector<std::string> tested = {"city",     "grass",  "heightfield", "sphere",  "room",
+                                       "wide",     "tabletop", "stadium",   "coplanar", "forest",
+                                       "office",   "towers",   "clutter",   "hair",     "sparse"};
     std::vector<std::string> registered;
     for (const ShapeInfo &s : shapes()) registered.push_back(s.name);
     EXPECT_EQ(registered, tested);

@@ -1,0 +1,138 @@
+/// \file test_shape_traits.cpp
+/// \brief The shapes added for scenes nobody tuned on (forest, office, towers, clutter, hair,
+/// sparse) have the property each one is there for: the tests measure it on the mesh.
+#include <gtest/gtest.h>
+#include <nori/accel.h>
+#include <nori/bbox.h>
+#include <scene_generator.h>
+#include <algorithm>
+#include <cmath>
+
+using namespace nori;
+using namespace nori::gen;
+
+namespace {
+
+BoundingBox3f boundsOf(const MeshData &m) {
+    BoundingBox3f b;
+    for (const Point3f &p : m.positions) b.expandBy(p);
+    return b;
+}
+
+BoundingBox3f triangleBounds(const MeshData &m, size_t f) {
+    BoundingBox3f b;
+    for (uint32_t i : m.faces[f]) b.expandBy(m.positions[i]);
+    return b;
+}
+
+double area(const MeshData &m, size_t f) {
+    const auto &i = m.faces[f];
+    Vector3d a = m.positions[i[0]].cast<double>(), b = m.positions[i[1]].cast<double>(),
+             c = m.positions[i[2]].cast<double>();
+    return 0.5 * (b - a).cross(c - a).norm();
+}
+
+/// The \p q quantile (0..1) of \p values.
+double quantile(std::vector<double> values, double q) {
+    auto at = values.begin() + std::ptrdiff_t(q * double(values.size() - 1));
+    std::nth_element(values.begin(), at, values.end());
+    return *at;
+}
+
+/// Distance to the first hit along the camera's central ray (brute force), infinity if none.
+float centralHitDistance(const GeneratedScene &s) {
+    Mesh mesh(s.mesh, "test");
+    PropertyList none;
+    std::unique_ptr<NoriObject> object = NoriObjectFactory::createInstance(NoriObject::EAccel, "brute", none);
+    auto &accel = static_cast<Accel &>(*object);
+    accel.addMesh(&mesh);
+    accel.build();
+    Hit hit;
+    Ray3f ray(s.camera.origin, (s.camera.target - s.camera.origin).normalized());
+    return accel.intersect(ray, hit) ? hit.t : Infinity;
+}
+
+TEST(ShapeTraits, ForestLeavesFillAVolume) {
+    // Most triangles are leaves of a few square centimetres, spread over metres of height.
+    GeneratedScene s = generateScene("forest", GenParams{20000, 1});
+    std::vector<double> areas, heights;
+    for (size_t f = 0; f < s.mesh.faces.size(); ++f) {
+        areas.push_back(area(s.mesh, f));
+        heights.push_back(triangleBounds(s.mesh, f).center().y());
+    }
+    EXPECT_LT(quantile(areas, 0.5), 0.01);
+    EXPECT_GT(quantile(heights, 0.75) - quantile(heights, 0.25), 2.0);
+    EXPECT_GT(centralHitDistance(s), 5.0f);  // the camera stands clear of every crown
+}
+
+TEST(ShapeTraits, OfficeCameraLooksDownACorridor) {
+    GeneratedScene s = generateScene("office");
+    BoundingBox3f b = boundsOf(s.mesh);
+    EXPECT_TRUE(b.contains(s.camera.origin));
+    // The view runs most of the storey's length before it meets a wall.
+    EXPECT_GT(centralHitDistance(s), 0.8f * b.extents().x());
+    // Thin walls: boxes 12 cm thick and 3 m high are a large share of the triangles.
+    size_t thin = 0;
+    for (size_t f = 0; f < s.mesh.faces.size(); ++f) {
+        Vector3f e = triangleBounds(s.mesh, f).extents();
+        thin += (e.y() > 2.9f && std::min(e.x(), e.z()) < 0.2f && std::max(e.x(), e.z()) < 0.2f) ? 1 : 0;
+    }
+    EXPECT_GT(thin, 1000u);
+}
+
+TEST(ShapeTraits, TowersAreTallerThanWide) {
+    GeneratedScene s = generateScene("towers");
+    Vector3f e = boundsOf(s.mesh).extents();
+    EXPECT_GE(e.y() / e.x(), 6.0f);
+    EXPECT_GE(e.y() / e.z(), 6.0f);
+    EXPECT_LT(s.camera.width, s.camera.height);  // a portrait frame
+}
+
+TEST(ShapeTraits, ClutterSpansFourDecadesOfTriangleSize) {
+    GeneratedScene s = generateScene("clutter", GenParams{20000, 1});
+    std::vector<double> areas;
+    for (size_t f = 0; f < s.mesh.faces.size(); ++f) areas.push_back(area(s.mesh, f));
+    auto [lo, hi] = std::minmax_element(areas.begin(), areas.end());
+    EXPECT_GT(*hi / *lo, 1e8);  // edge lengths over four decades
+    // Every decade of stone size is present: pebble triangles under 1e-4, boulder ones over 1.
+    EXPECT_LT(quantile(areas, 0.05), 1e-4);
+    EXPECT_GT(quantile(areas, 0.8), 1.0);
+}
+
+TEST(ShapeTraits, HairIsMadeOfSliversOutsideTheHead) {
+    GeneratedScene s = generateScene("hair", GenParams{20000, 1});
+    size_t slivers = 0, inside = 0;
+    for (size_t f = 0; f < s.mesh.faces.size(); ++f) {
+        const auto &i = s.mesh.faces[f];
+        Vector3d a = s.mesh.positions[i[0]].cast<double>(), b = s.mesh.positions[i[1]].cast<double>(),
+                 c = s.mesh.positions[i[2]].cast<double>();
+        double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+        slivers += longest / (2.0 * area(s.mesh, f)) > 8.0 ? 1 : 0;
+    }
+    for (const Point3f &p : s.mesh.positions) inside += p.norm() < 0.999f ? 1 : 0;
+    EXPECT_GT(double(slivers), 0.8 * double(s.mesh.faces.size()));
+    EXPECT_EQ(inside, 0u);  // no strand grows into the head
+    // Long strands: the hair hangs well below the head's radius.
+    EXPECT_LT(boundsOf(s.mesh).min.y(), -1.4f);
+}
+
+TEST(ShapeTraits, SparseIsMostlyEmpty) {
+    GeneratedScene s = generateScene("sparse");
+    BoundingBox3f b = boundsOf(s.mesh);
+    double occupied = 0.0;
+    size_t tilted = 0;
+    for (size_t f = 0; f < s.mesh.faces.size(); ++f) {
+        BoundingBox3f t = triangleBounds(s.mesh, f);
+        Vector3f e = t.extents();
+        if (e.x() > 0.3f * b.extents().x()) {
+            tilted += e.minCoeff() > 100.0f ? 1 : 0;  // huge and not in an axis plane
+            continue;
+        }
+        occupied += double(e.x()) * double(e.y()) * double(e.z());
+    }
+    EXPECT_EQ(tilted, 8u);
+    // The triangles' boxes (overlaps counted twice) fill less than a millionth of the bounds.
+    EXPECT_LT(occupied / (double(b.extents().x()) * b.extents().y() * b.extents().z()), 1e-6);
+}
+
+} // namespace
