@@ -176,6 +176,9 @@ struct NodeRay {
     /// nearest child over in registers spares the traversal a store and an immediate reload of
     /// the stack top (a store-forwarding stall on the hot path), and its cull test: it was
     /// entered before the closest hit, which cannot have changed since.
+    /// Without \p kEntries (an any-hit query, which culls nothing) the 8-lane test does not
+    /// store the waiting children's entry distances.
+    template <bool kEntries = true>
     int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
              float *tnear, uint32_t near[2], F &entry, int &nearLane) const {
         const uint32_t octant = SlabRay::kOctants[code][signs];
@@ -220,8 +223,12 @@ struct NodeRay {
                 hit ^= 1u << top;
             }
             lanes::compressStoreBits(hit, lookup8(node.child, c), child + k);
-            lanes::compressStoreBits(hit, lookup8(node.count, c), count + k);
-            k += lanes::compressStoreBits(hit, t0, tnear + k);
+            if constexpr (kEntries || L != 8) {
+                lanes::compressStoreBits(hit, lookup8(node.count, c), count + k);
+                k += lanes::compressStoreBits(hit, t0, tnear + k);
+            } else {
+                k += lanes::compressStoreBits(hit, lookup8(node.count, c), count + k);
+            }
         }
         if constexpr (L != 8) {
             // Lane by lane: the last one pushed is the nearest.
@@ -369,8 +376,9 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
             uint32_t near[2];
             SimdRay::F entry;
             int nearLane;
-            int pushed = simd.push(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
-                                   stackT + sp, near, entry, nearLane);
+            // (No entry distances: an any-hit query culls nothing.)
+            int pushed = simd.push<false>(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp,
+                                          stackCount + sp, stackT + sp, near, entry, nearLane);
             if (pushed >= 0) {
                 sp += pushed;
                 child = near[0];
