@@ -187,27 +187,26 @@ struct NodeRay {
         for (int j = 0; j < 8; j += L) {
             const U c = U::loadu(kBackToFront + j) ^ octantLanes;
             F t0(mint), t1(maxt);
-            if constexpr (L == 8) {
-                // The slabs in the node's own child order, permuted into the ray's order only at
-                // the end: the box loads and the arithmetic on them need only the node's address,
-                // not the octant (looked up from the reference's pattern, a chain of its own), so
-                // the two run side by side. Lane-wise operations commute with the permutation:
-                // the same bits as permuting first.
+            // The slabs of the block's children, each box bound fetched by \p load.
+            auto slabs = [&](auto load) {
                 for (int a = 0; a < 3; ++a) {
-                    F tn = (F::loadu(node.box[a] + entryHalf[a]) - org[a]) * rcpNear[a];
-                    F tf = (F::loadu(node.box[a] + (8 - entryHalf[a])) - org[a]) * rcpFar[a];
+                    F tn = (load(node.box[a] + entryHalf[a]) - org[a]) * rcpNear[a];
+                    F tf = (load(node.box[a] + (8 - entryHalf[a])) - org[a]) * rcpFar[a];
                     t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
                     t1 = min(tf, t1);
                 }
+            };
+            if constexpr (L == 8) {
+                // In the node's own child order, permuted into the ray's order only at the end:
+                // the box loads and the arithmetic on them need only the node's address, not the
+                // octant (looked up from the reference's pattern, a chain of its own), so the two
+                // run side by side. Lane-wise operations commute with the permutation: the same
+                // bits as permuting first.
+                slabs([](const float *p) { return F::loadu(p); });
                 t0 = permute(t0, c);
                 t1 = permute(t1, c);
             } else {
-                for (int a = 0; a < 3; ++a) {
-                    F tn = (lookup8(node.box[a] + entryHalf[a], c) - org[a]) * rcpNear[a];
-                    F tf = (lookup8(node.box[a] + (8 - entryHalf[a]), c) - org[a]) * rcpFar[a];
-                    t0 = max(tn, t0);
-                    t1 = min(tf, t1);
-                }
+                slabs([&](const float *p) { return lookup8(p, c); });
             }
             // The lanes entered, as bits (edited in a general register, not as a vector mask).
             unsigned hit = bits(t0 <= t1);
