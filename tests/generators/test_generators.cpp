@@ -6,27 +6,16 @@
 #include <error_of.h>
 #include <ray_sets.h>
 #include <scene_generator.h>
+#include "mesh_measures.h"
 #include <algorithm>
 #include <map>
 #include <cmath>
 
 using namespace nori;
 using namespace nori::gen;
+using namespace nori::gen::test;
 
 namespace {
-
-BoundingBox3f boundsOf(const MeshData &m) {
-    BoundingBox3f b;
-    for (const Point3f &p : m.positions) b.expandBy(p);
-    return b;
-}
-
-double area(const MeshData &m, size_t f) {
-    const auto &i = m.faces[f];
-    Vector3d a = m.positions[i[0]].cast<double>(), b = m.positions[i[1]].cast<double>(),
-             c = m.positions[i[2]].cast<double>();
-    return 0.5 * (b - a).cross(c - a).norm();
-}
 
 /// Longest edge squared over twice the area: ~1 for a well-shaped triangle, large for a sliver.
 double aspect(const MeshData &m, size_t f) {

@@ -5,32 +5,15 @@
 #include <nori/accel.h>
 #include <nori/bbox.h>
 #include <scene_generator.h>
+#include "mesh_measures.h"
 #include <algorithm>
 #include <cmath>
 
 using namespace nori;
 using namespace nori::gen;
+using namespace nori::gen::test;
 
 namespace {
-
-BoundingBox3f boundsOf(const MeshData &m) {
-    BoundingBox3f b;
-    for (const Point3f &p : m.positions) b.expandBy(p);
-    return b;
-}
-
-BoundingBox3f triangleBounds(const MeshData &m, size_t f) {
-    BoundingBox3f b;
-    for (uint32_t i : m.faces[f]) b.expandBy(m.positions[i]);
-    return b;
-}
-
-double area(const MeshData &m, size_t f) {
-    const auto &i = m.faces[f];
-    Vector3d a = m.positions[i[0]].cast<double>(), b = m.positions[i[1]].cast<double>(),
-             c = m.positions[i[2]].cast<double>();
-    return 0.5 * (b - a).cross(c - a).norm();
-}
 
 /// The \p q quantile (0..1) of \p values.
 double quantile(std::vector<double> values, double q) {
