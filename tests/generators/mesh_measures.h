@@ -1,9 +1,11 @@
 /// \file mesh_measures.h
-/// \brief Measures of a generated mesh that the generator tests check: its bounds, a
-/// triangle's bounds and a triangle's area (in double).
+/// \brief What the generator tests measure a generated mesh with: its bounds, a triangle's
+/// bounds and area (in double), and a brute-force accelerator over it for the camera checks.
 #pragma once
 
+#include <nori/accel.h>
 #include <nori/bbox.h>
+#include <memory>
 #include <scene_generator.h>
 
 namespace nori::gen::test {
@@ -25,6 +27,16 @@ inline double area(const MeshData &m, size_t f) {
     Vector3d a = m.positions[i[0]].cast<double>(), b = m.positions[i[1]].cast<double>(),
              c = m.positions[i[2]].cast<double>();
     return 0.5 * (b - a).cross(c - a).norm();
+}
+
+/// A built brute-force accelerator over \p mesh (which must outlive it).
+inline std::unique_ptr<Accel> bruteForce(const Mesh &mesh) {
+    PropertyList none;
+    std::unique_ptr<NoriObject> object = NoriObjectFactory::createInstance(NoriObject::EAccel, "brute", none);
+    std::unique_ptr<Accel> accel(static_cast<Accel *>(object.release()));
+    accel->addMesh(&mesh);
+    accel->build();
+    return accel;
 }
 
 } // namespace nori::gen::test

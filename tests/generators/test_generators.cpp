@@ -72,11 +72,8 @@ TEST_P(EveryShape, CameraSeesTheScene) {
     small.height = 18;
     auto camera = makeCamera(small);
     Mesh mesh(s.mesh, "test");
-    PropertyList none;
-    std::unique_ptr<NoriObject> object = NoriObjectFactory::createInstance(NoriObject::EAccel, "brute", none);
-    auto &accel = static_cast<Accel &>(*object);
-    accel.addMesh(&mesh);
-    accel.build();
+    std::unique_ptr<Accel> brute = bruteForce(mesh);
+    Accel &accel = *brute;
     size_t hits = 0, rays = 0;
     for (const Ray3f &ray : cameraRays(*camera, 1, 5)) {
         Hit hit;

@@ -25,11 +25,8 @@ double quantile(std::vector<double> values, double q) {
 /// Distance to the first hit along the camera's central ray (brute force), infinity if none.
 float centralHitDistance(const GeneratedScene &s) {
     Mesh mesh(s.mesh, "test");
-    PropertyList none;
-    std::unique_ptr<NoriObject> object = NoriObjectFactory::createInstance(NoriObject::EAccel, "brute", none);
-    auto &accel = static_cast<Accel &>(*object);
-    accel.addMesh(&mesh);
-    accel.build();
+    std::unique_ptr<Accel> brute = bruteForce(mesh);
+    Accel &accel = *brute;
     Hit hit;
     Ray3f ray(s.camera.origin, (s.camera.target - s.camera.origin).normalized());
     return accel.intersect(ray, hit) ? hit.t : Infinity;
