@@ -103,6 +103,8 @@ int main(int argc, char **argv) {
         for (const AccelStat &s : octree.statistics()) std::printf("%s %g\n", s.name.c_str(), s.value);
         auto report = [&](const char *name, const std::vector<Ray3f> &rays, bool shadow) {
             g_octreeCounters = {};
+            std::vector<uint64_t> visits(1u << 24, 0);
+            g_octreeCounters.nodeVisits = &visits;
             size_t hits = 0;
             for (const Ray3f &r : rays) {
                 Hit h;
@@ -121,6 +123,22 @@ int main(int argc, char **argv) {
             std::printf("\n         kept lists/chunks by list size (<=4, 16, 64, 256, more):");
             for (int b = 0; b < 5; ++b)
                 std::printf(" %.2f/%.2f", double(g_octreeCounters.keptBySize[b]) / n, double(g_octreeCounters.keptChunksBySize[b]) / n);
+            std::printf("\n");
+            // Visits by depth, and by the node's filled children.
+            std::vector<double> byDepth(40, 0.0), byFilled(9, 0.0);
+            octree.forEachNode([&](const OctreeAccel::NodeView &v) {
+                int filled = 0;
+                for (int c = 0; c < 8; ++c) filled += v.node.box[0][c] <= v.node.box[0][8 + c];
+                byDepth[std::min(v.depth, 39)] += double(visits[v.index]);
+                byFilled[filled] += double(visits[v.index]);
+            });
+            std::printf("         node visits by depth:");
+            for (int d = 0; d < 40; ++d)
+                if (byDepth[d] > 0) std::printf(" %d:%.2f", d, byDepth[d] / n);
+            std::printf("\n         by filled children:");
+            for (int f = 0; f < 9; ++f) std::printf(" %d:%.2f", f, byFilled[f] / n);
+            std::printf("\n         by children entered:");
+            for (int f = 0; f < 9; ++f) std::printf(" %d:%.2f", f, double(g_octreeCounters.entered[f]) / n);
             std::printf("\n");
         };
         report("primary", primary, false);

@@ -201,6 +201,10 @@ struct OctreeCounters {
     uint64_t leavesBySize[6] = {}, chunksBySize[6] = {};
     /// Kept lists tested and their chunks, by size: up to 4, 16, 64, 256 triangles, more.
     uint64_t keptBySize[5] = {}, keptChunksBySize[5] = {};
+    /// If set: visits per inner node (by index), and per visit the children the ray entered
+    /// (1..8, 0: none), for per-depth reports.
+    std::vector<uint64_t> *nodeVisits = nullptr;
+    uint64_t entered[9] = {};
 };
 extern OctreeCounters g_octreeCounters;
 #endif

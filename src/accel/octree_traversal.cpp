@@ -295,6 +295,10 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             int nearLane = 0;
             int pushed = simd.push(node, patternOf(count), ray.mint, tri.cullLimit(best.t), stackChild + sp, stackCount + sp,
                                    stackT + sp, near, entry, nearLane);
+#ifdef NORI_OCTREE_COUNTERS
+            if (g_octreeCounters.nodeVisits) ++(*g_octreeCounters.nodeVisits)[child];
+            ++g_octreeCounters.entered[pushed + 1];
+#endif
             // descend: the nearest child is still to be entered; pushed: siblings on the stack.
             bool descend = pushed >= 0;
             pushed = std::max(pushed, 0);
