@@ -210,6 +210,60 @@ TEST(KernelPrecision, HitPointsLieOnTheExactPlaneAtEveryWidth) {
     }
 }
 
+// The any-hit query must give the closest-hit kernel's answer (which recomputes t where its
+// error estimate is large) at every range end: on the huge quads, slivers and ordinary
+// triangles above, from near and far, with maxt and mint placed 2^-22 .. 2^-3 of t* beside the
+// closest-hit t*, for every triangle on its own and at every width. A guard for shortcuts that
+// skip the exact t on any-hit rays: one that skipped it where the float t lay inside the range
+// by four times the kernels' error estimate (err <= 2^-8 t) failed here (watertight, an
+// ordinary triangle 2000 units from the origin: its float t off by more than 4x the estimate).
+TEST(KernelPrecision, AnyHitAgreesWithTheClosestHitAtTheRangeEnds) {
+    pcg32 rng(20261125);
+    auto uniform = [&](float a, float b) { return a + (b - a) * float(rng() >> 8) * 0x1p-24f; };
+    const std::vector<std::array<Point3f, 3>> tris = hardTriangles(uniform);
+    for (Intersector kind : {Intersector::Watertight, Intersector::MT}) {
+        std::vector<TriangleStore> stores;
+        for (const auto &tri : tris) stores.push_back(leafOf(kind, {tri}));
+        size_t checked = 0, wrong = 0, near = 0;
+        for (int k = 0; k < 20000; ++k) {
+            const float reach = k % 2 ? 10.0f : 2000.0f;
+            Point3f o(uniform(-reach, reach), uniform(-reach, reach), uniform(-reach, reach));
+            if (k % 4 == 1) o.y() = std::ldexp(uniform(0.5f, 1.0f), -int(rng() % 20));  // just above the ground
+            const size_t s = rng() % tris.size();
+            const auto &p = tris[s];
+            float b1 = uniform(0, 1), b2 = uniform(0, 1);
+            if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
+            Vector3f d = (p[0] + b1 * (p[1] - p[0]) + b2 * (p[2] - p[0])) - o;
+            if (k % 8 == 5) d.y() = std::abs(d.y());  // leaving the ground
+            if (d.isZero()) continue;
+            TriangleStore::ChunkAnswers open;
+            if (!stores[s].chunkAnswers(1, TriangleRay(Ray3f(o, d)), 0, 1, 0, Infinity, open)) continue;
+            const float t = open.t[0];
+            for (int e = 0; e < 8; ++e) {
+                const float delta = std::ldexp(uniform(1, 2), -22 + int(rng() % 19)) * (e % 2 ? 1.0f : -1.0f);
+                Ray3f ray(o, d);
+                if (e < 4) ray.maxt = t * (1.0f + delta);  // maxt just beside t
+                else if (t > 0.0f) ray.mint = t * (1.0f + delta);  // mint just beside t
+                const TriangleRay tr(ray);
+                TriangleStore::ChunkAnswers ref;
+                const bool expected = stores[s].chunkAnswers(1, tr, 0, 1, 0, ray.maxt, ref) != 0;
+                near += std::abs(delta) < 0x1p-12f;
+                for (int width : TriangleStore::laneWidths()) {
+                    ++checked;
+                    if (stores[s].occludedLanes(width, tr, 0, 1, ray.maxt) != expected && ++wrong <= 5)
+                        ADD_FAILURE() << intersectorName(kind) << ", " << width << " lanes, triangle " << s << ": any hit "
+                                      << !expected << ", closest hit " << expected << " (t " << ref.t[0] << ", mint "
+                                      << ray.mint << ", maxt " << ray.maxt << "); o " << o.transpose() << " d "
+                                      << d.transpose();
+                }
+            }
+        }
+        EXPECT_EQ(wrong, 0u) << intersectorName(kind);
+        EXPECT_GT(checked, 50000u) << intersectorName(kind);
+        EXPECT_GT(near, 10000u) << intersectorName(kind);
+    }
+}
+
 /// Smallest barycentric coordinate, in long double, of the crossing of \p ray with the plane of
 /// \p p (relative to the triangle: 0 on an edge, negative outside); NaN when the ray is parallel.
 long double crossingMinBary(const std::array<Point3f, 3> &p, const Ray3f &ray) {
