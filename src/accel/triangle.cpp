@@ -192,7 +192,7 @@ template <int L>
 struct Step {
     VFloat<L> t, u, v;
     VMask<L> hit;
-    VMask<L> known{};  ///< for the tests: t from axisPlaneT or exactPlaneT, crossing known inside (test skipped)
+    VMask<L> known{};  ///< for the tests: t from exactPlaneT, crossing known inside (test skipped)
 };
 
 /// Scale of the problem for the t error estimates, in units of t: |d|_inf = |d[kz]|, 1 / |d|_inf
@@ -225,33 +225,6 @@ inline float signedFloat(double x) {
     return f != 0.0f || x == 0.0 ? f : std::copysign(std::numeric_limits<float>::denorm_min(), f);
 }
 
-/// The lanes of \p in whose triangle lies in an axis plane x_a = c (its three corners share
-/// coordinate a exactly: a floor, a ceiling, a wall, the huge triangles that need an exact t
-/// most often) get t = (c - o_a) / d_a in float: two roundings, so within 2u |t| of the exact t
-/// (u = 2^-24), as close as exactPlaneT's double result rounded to float, for a subtraction and
-/// a division instead of a lane-by-lane pass in double. Axes are tried in the order x, y, z.
-/// Lanes with d_a = 0 (a ray parallel to the plane), or whose quotient underflows to zero from
-/// a nonzero difference (its sign would be lost), are left out. Returns t with those lanes
-/// replaced; \p done gets them. Vectorized, so every width gives the same bits.
-template <int L>
-[[gnu::always_inline]] inline VFloat<L> axisPlaneT(VMask<L> in, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
-                                                   VFloat<L> t, VMask<L> &done) {
-    using F = VFloat<L>;
-    F num(0.0f), den(1.0f);
-    VMask<L> flat{};
-    for (int a = 2; a >= 0; --a) {  // later axes first, so that x overrides y overrides z
-        if (r.d[a] == 0.0f) continue;
-        const F c0 = loadRow(rows, n, a, i, in);
-        const VMask<L> on = in & (c0 == loadRow(rows, n, 3 + a, i, in)) & (c0 == loadRow(rows, n, 6 + a, i, in));
-        num = select(on, c0 - F(r.o[a]), num);
-        den = select(on, F(r.d[a]), den);
-        flat = flat | on;
-    }
-    const F q = num / den;
-    done = flat & ((q != 0.0f) | (num == 0.0f));
-    return select(done, q, t);
-}
-
 /// The lanes of \p redo get t again from the plane equation in double precision,
 /// t = n.(p0 - o) / (n.d) with n = (p1 - p0) x (p2 - p0), on the stored (exact) corners; the
 /// other lanes keep \p t. The differences of floats are exact in double (up to a relative 2^-53
@@ -278,6 +251,21 @@ template <int L>
         if (primAt(rows, n, i + uint32_t(j)) == skipPrim) {  // already the closest hit: no news
             out[j] = std::numeric_limits<float>::quiet_NaN();
             continue;
+        }
+        if (bits(inside) >> j & 1u) {
+            // An axis-aligned triangle (a floor, a wall: the huge triangles that come here most)
+            // lies in the plane x_a = p0_a: t = (p0_a - o_a) / d_a, a difference of floats
+            // (exact in double up to a relative 2^-53) and one division, instead of the normal
+            // and two dot products below. The exact t is the same; its rounding may differ by
+            // an ulp of double.
+            const int a = c[0] == c[3 * s] && c[0] == c[6 * s]           ? 0
+                          : c[s] == c[4 * s] && c[s] == c[7 * s]         ? 1
+                          : c[2 * s] == c[5 * s] && c[2 * s] == c[8 * s] ? 2
+                                                                         : -1;
+            if (a >= 0 && r.d[a] != 0.0f) {
+                out[j] = signedFloat((double(c[size_t(a) * s]) - double(r.o[a])) / double(r.d[a]));
+                continue;
+            }
         }
         const double p0x = c[0], p0y = c[s], p0z = c[2 * s];
         const double e1[3] = {c[3 * s] - p0x, c[4 * s] - p0y, c[5 * s] - p0z};
@@ -312,18 +300,6 @@ template <int L>
     return VFloat<L>::loadu(out);
 }
 
-/// t of the lanes of \p redo from the plane: those of \p strict (crossing known inside) on an
-/// axis plane by axisPlaneT in float, the rest by exactPlaneT in double. Out of line, as
-/// exactPlaneT was: most kernel steps never come here.
-template <int L>
-[[gnu::noinline]] VFloat<L> planeT(VMask<L> redo, VMask<L> strict, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
-                                   VFloat<L> t, uint32_t skipPrim) {
-    VMask<L> flat;
-    t = axisPlaneT(redo & strict, r, rows, n, i, t, flat);
-    const VMask<L> rest = redo & ~flat;
-    return any(rest) ? exactPlaneT(rest, strict, r, rows, n, i, t, skipPrim) : t;
-}
-
 /// Möller & Trumbore 1997: Cramer's rule on [-d, e1, e2] (t, u, v) = o - p0, with the edges
 /// e1 = p1 - p0, e2 = p2 - p0 rounded to float in the kernel. Known leaks: u, v and u + v are
 /// rounded independently for the two triangles of a shared edge, so a ray through (or within a
@@ -334,7 +310,7 @@ template <int L>
 /// sine of the ray's angle to it: large on slivers, where det and e2.q are cross products of
 /// nearly parallel edges) times (|o - p0| + t |d|). Where that first-order estimate (with a
 /// factor 2 of margin) exceeds 2^-19 of the problem's scale (needsExactT), t is recomputed
-/// from the plane equation (planeT; in double off the axis planes): the remedy of computing the
+/// from the plane equation in double (exactPlaneT): the remedy of computing the
 /// distance from the plane where the edge-based t is ill-conditioned, only where it is.
 template <int L>
 [[gnu::always_inline]] inline Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt,
@@ -379,7 +355,7 @@ template <int L>
             const F e = max(e1, e2);
             const F bound = F(0x1p-15f) * (F(sc.dInf) * e) * (w + e) * abs(invDet);
             const VMask<L> inside = (u > bound) & (v > bound) & (F(1.0f) - (u + v) > bound);
-            t = planeT(redo, inside, r, rows, n, i, t, skipPrim);
+            t = exactPlaneT(redo, inside, r, rows, n, i, t, skipPrim);
             known = redo & inside;
         }
     }
@@ -447,8 +423,7 @@ template <int L>
 /// with their distance |p - o| from the ray origin, not with t: on a triangle much larger than the
 /// hit distance (a 2000-unit ground seen from 6 units) t is off by more than the distance to the
 /// plane, and a ray leaving the surface re-hits it. Those lanes, and the lanes whose exact
-/// decision overturned the float one, get t from the plane equation (planeT: in float on an axis
-/// plane, else in double).
+/// decision overturned the float one, get t from the plane equation in double (exactPlaneT).
 template <int L>
 [[gnu::always_inline]] inline Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt,
                                                  uint32_t skipPrim) {
@@ -522,7 +497,7 @@ template <int L>
             // Lanes decided exactly with no zero volume cross strictly inside too; those with a
             // zero one cross on an edge, and exactPlaneT's inside test keeps them.
             const VMask<L> strict = inside | (exactly & (U != 0.0f) & (V != 0.0f) & (W != 0.0f));
-            t = planeT(redo, strict, r, rows, n, i, t, skipPrim);
+            t = exactPlaneT(redo, strict, r, rows, n, i, t, skipPrim);
             known = redo & strict;
         }
     }

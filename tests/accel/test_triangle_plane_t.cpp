@@ -1,9 +1,8 @@
 /// \file test_triangle_plane_t.cpp
-/// \brief t where the kernels recompute it from the plane (planeT, src/accel/triangle.cpp): on
-/// huge floors and walls (three corners sharing a coordinate: t = (p_a - o_a) / d_a in float,
-/// axisPlaneT), on huge planes tilted by 2^-2 .. 2^-20 and on ramps whose corners share no
-/// coordinate (the normal and two dot products in double), t is the exact t rounded, at every
-/// lane width.
+/// \brief t where the kernels recompute it from the plane (exactPlaneT, src/accel/triangle.cpp):
+/// on huge floors and walls (three corners sharing a coordinate: t = (p_a - o_a) / d_a), on
+/// huge planes tilted by 2^-2 .. 2^-20 and on ramps whose corners share no coordinate (the
+/// normal and two dot products in double), t is the exact t rounded, at every lane width.
 #include <gtest/gtest.h>
 #include <nori/accel.h>
 #include <accel/triangle.h>
