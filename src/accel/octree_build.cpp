@@ -2,6 +2,7 @@
 /// \brief The octree's recursive midpoint subdivision: which axes a cell splits, which child
 /// cells each triangle touches, which triangles stay in the node, and when a cell is a leaf.
 #include "octree_build.h"
+#include "stack_arena.h"
 #include "triangle_box.h"
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
@@ -678,12 +679,20 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     int depth = depthIn;
     OctreeNode::Pattern pattern{{0, 1, 2}};
     BoundingBox3f cells[8];
+    // The node's scratch and its children's lists come from this thread's stack arena and go
+    // back to it when the node returns (its children, built meanwhile, return theirs first).
+    StackArena &arena = StackArena::local();
+    struct Release {
+        StackArena &arena;
+        const StackArena::Mark mark;
+        ~Release() { arena.release(mark); }
+    } release{arena, arena.mark()};
     // One block for the node's scratch lists: the indices of the straddlers (at most n) and
     // each reference's mask.
-    LargeArray<uint32_t> scratch = makeLargeArray<uint32_t>(n + (n + 3) / 4);
-    uint8_t *masks = reinterpret_cast<uint8_t *>(scratch.get() + n);
+    uint32_t *const scratch = arena.allocate<uint32_t>(n + (n + 3) / 4);
+    uint8_t *masks = reinterpret_cast<uint8_t *>(scratch + n);
     std::optional<Classifier> classifier;
-    Indices straddlers{scratch.get(), 0};  // the references whose bounding boxes straddle, in order
+    Indices straddlers{scratch, 0};  // the references whose bounding boxes straddle, in order
 
     // Which child cells a triangle touches: its bounding box against the cells (see
     // Classifier::oneSide for a box on a plane), refined by the SAT only for straddling
@@ -1060,10 +1069,10 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         start[c + 1] = start[c] + counts[c];
         node->box[c] = boxes[c];
     }
-    LargeArray<Ref> lists = makeLargeArray<Ref>(start[8]);
+    Ref *const lists = arena.allocate<Ref>(start[8]);
     {
         Ref *out[8];
-        for (int c = 0; c < 8; ++c) out[c] = lists.get() + start[c];
+        for (int c = 0; c < 8; ++c) out[c] = lists + start[c];
         // Between two straddlers every reference goes to one child (its box lies in it); the
         // straddlers go to all of theirs (none when kept).
         size_t i = 0;
@@ -1074,14 +1083,13 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         }
         for (; i < n; ++i) *out[__builtin_ctz(masks[i])]++ = ids[i];
     }
-    scratch.reset();
 
     // Depth of each child: one level below, or for the seed's rule one more level for every
     // earlier sibling (its build passes `++ctr` to the children in turn, empty ones included).
     for (int c = 0; c < 8; ++c) node->childDepth[c] = depth + 1 + (in.rule == Rule::Seed ? c : 0);
 
     auto buildChild = [&](int c) {
-        Ref *list = lists.get() + start[c];
+        Ref *list = lists + start[c];
         const size_t size = counts[c];
         if (size >= in.leafSize && node->childDepth[c] < in.maxDepth) {
             double share = budget * double(size) / double(sum);
@@ -1105,7 +1113,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         uint32_t *out = node->leafIds.get();
         for (int c = 0; c < 8; ++c) {
             if (node->inner[c] || !counts[c]) continue;
-            const Ref *list = lists.get() + start[c];
+            const Ref *list = lists + start[c];
             for (size_t i = 0; i < counts[c]; ++i) out[i] = list[i].id & ~kLooseBit;
             node->refs[c] = {out, counts[c]};
             out += counts[c];
