@@ -922,7 +922,6 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         struct Candidate {
             double copies, hit;
             size_t i;
-            double benefit;  ///< copies + hit * descent, the order of the search
         };
         // (Scratch reused by every node a thread builds: the search ends before the children
         // are built, so a node's search never overlaps another's on one thread.)
@@ -935,15 +934,11 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             for (; m; m &= m - 1) copies += p[__builtin_ctz(m)];
             // (A dense array: the corners of a random triangle cost three cache lines.)
             double hit = boxArea > 0.0 ? std::min(1.0, double(in.areas[ids[i].id & ~kLooseBit]) / boxArea) : 0.0;
-            if (copies * w + hit * descent > w) {
-                const double c = copies * w;
-                candidates.push_back({c, hit, i, c + hit * descent});
-            }
+            if (copies * w + hit * descent > w) candidates.push_back({copies * w, hit, i});
         }
-        // (The benefit computed once per candidate, not twice per comparison: the same
-        // expression, so the same values and the same order.)
-        std::sort(candidates.begin(), candidates.end(),
-                  [](const Candidate &a, const Candidate &b) { return a.benefit > b.benefit; });
+        std::sort(candidates.begin(), candidates.end(), [&](const Candidate &a, const Candidate &b) {
+            return a.copies + a.hit * descent > b.copies + b.hit * descent;
+        });
         double copies = 0.0, hit = 0.0, bestSaving = 0.0, keptCost = 0.0;
         size_t best = 0;
         bool bestSingle = false;
