@@ -2,6 +2,7 @@
 /// \brief The octree's recursive midpoint subdivision: which axes a cell splits, which child
 /// cells each triangle touches, which triangles stay in the node, and when a cell is a leaf.
 #include "octree_build.h"
+#include "stack_arena.h"
 #include "triangle_box.h"
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
@@ -618,6 +619,41 @@ struct Gathered {
         lo[c] = min4(max4(rlo, clips.lo[k]), lo[c]);
         hi[c] = max4(min4(rhi, clips.hi[k]), hi[c]);
     }
+    /// addOne() for references in order, as they come: the current run of references to one
+    /// child is summed in registers and added to the child's sums when the run ends (the
+    /// smaller lower bound of the run's and the child's, the child's on a tie, as one pass in
+    /// order keeps the earlier), so that the next reference does not wait for the store of the
+    /// child's bounds. Most references follow one of the same child (a node's list is its
+    /// parent's list of that child, in order).
+    struct Runs {
+        Gathered &g;
+        int child = -1;
+        size_t count = 0;
+        Float4 lo = {}, hi = {};
+        void add(const Ref &r, int c, const Clips &clips) {
+            const Float4 rlo = load4(r.lo), rhi = load4(r.hi);
+            const int k = (r.id & kLooseBit) ? 8 : c;
+            const Float4 l = max4(rlo, clips.lo[k]), h = min4(rhi, clips.hi[k]);
+            if (c != child) {
+                flush();
+                child = c;
+                count = 1;
+                lo = l;
+                hi = h;
+                return;
+            }
+            ++count;
+            lo = min4(l, lo);
+            hi = max4(h, hi);
+        }
+        void flush() {
+            if (child < 0) return;
+            g.counts[child] += count;
+            g.lo[child] = min4(lo, g.lo[child]);
+            g.hi[child] = max4(hi, g.hi[child]);
+            child = -1;
+        }
+    };
     /// Add the sums of \p g, a later run (ties keep the earlier bound, as one pass would).
     void merge(const Gathered &g) {
         for (int c = 0; c < 8; ++c) {
@@ -678,12 +714,20 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     int depth = depthIn;
     OctreeNode::Pattern pattern{{0, 1, 2}};
     BoundingBox3f cells[8];
+    // The node's scratch and its children's lists come from this thread's stack arena and go
+    // back to it when the node returns (its children, built meanwhile, return theirs first).
+    StackArena &arena = StackArena::local();
+    struct Release {
+        StackArena &arena;
+        const StackArena::Mark mark;
+        ~Release() { arena.release(mark); }
+    } release{arena, arena.mark()};
     // One block for the node's scratch lists: the indices of the straddlers (at most n) and
     // each reference's mask.
-    LargeArray<uint32_t> scratch = makeLargeArray<uint32_t>(n + (n + 3) / 4);
-    uint8_t *masks = reinterpret_cast<uint8_t *>(scratch.get() + n);
+    uint32_t *const scratch = arena.allocate<uint32_t>(n + (n + 3) / 4);
+    uint8_t *masks = reinterpret_cast<uint8_t *>(scratch + n);
     std::optional<Classifier> classifier;
-    Indices straddlers{scratch.get(), 0};  // the references whose bounding boxes straddle, in order
+    Indices straddlers{scratch, 0};  // the references whose bounding boxes straddle, in order
 
     // Which child cells a triangle touches: its bounding box against the cells (see
     // Classifier::oneSide for a box on a plane), refined by the SAT only for straddling
@@ -800,6 +844,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             // first kind, \p gm the second, whose indices go to \p multi.
             auto run = [&](size_t begin, size_t end, Gathered &g, Gathered &gm, Indices &multi) {
                 uint32_t straddle[kBlock];
+                Gathered::Runs runs{g};
                 for (size_t b = begin; b < end; b += kBlock) {
                     const size_t e = std::min(end, b + kBlock);
                     size_t k = 0;
@@ -814,6 +859,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                                 masks[i] = uint8_t(mask);
                                 if (in.exact) {
                                     __builtin_prefetch(&in.vertices[r.id]);
+                                    __builtin_prefetch(&in.areas[r.id]);  // (for the kept search)
                                     straddle[k++] = uint32_t(i);
                                 } else {
                                     gm.add(r, mask, clips);
@@ -823,7 +869,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                             }
                         }
                         masks[i] = uint8_t(mask);
-                        g.addOne(r, __builtin_ctz(mask), clips);
+                        runs.add(r, __builtin_ctz(mask), clips);
                     }
                     for (size_t j = 0; j < k; ++j) {
                         const uint32_t i = straddle[j];
@@ -834,6 +880,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                         multi.data[multi.count++] = i;
                     }
                 }
+                runs.flush();
             };
             Gathered multi, all;
             single = Gathered();
@@ -1060,28 +1107,43 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         start[c + 1] = start[c] + counts[c];
         node->box[c] = boxes[c];
     }
-    LargeArray<Ref> lists = makeLargeArray<Ref>(start[8]);
+    Ref *const lists = arena.allocate<Ref>(start[8]);
     {
         Ref *out[8];
-        for (int c = 0; c < 8; ++c) out[c] = lists.get() + start[c];
-        // Between two straddlers every reference goes to one child (its box lies in it); the
-        // straddlers go to all of theirs (none when kept).
+        for (int c = 0; c < 8; ++c) out[c] = lists + start[c];
+        // Between two straddlers every reference goes to one child (its box lies in it), with
+        // the write position of the current run's child in a register (not stored and loaded
+        // again for each reference); the straddlers go to all of theirs (none when kept).
+        auto copyOnes = [&](size_t from, size_t to) {
+            int child = -1;
+            Ref *o = nullptr;
+            for (size_t j = from; j < to; ++j) {
+                const int c = __builtin_ctz(masks[j]);
+                if (c != child) {
+                    if (child >= 0) out[child] = o;
+                    child = c;
+                    o = out[c];
+                }
+                *o++ = ids[j];
+            }
+            if (child >= 0) out[child] = o;
+        };
         size_t i = 0;
         for (const uint32_t next : straddlers) {
-            for (; i < next; ++i) *out[__builtin_ctz(masks[i])]++ = ids[i];
+            copyOnes(i, next);
+            i = next;
             for (unsigned m = masks[i]; m; m &= m - 1) *out[__builtin_ctz(m)]++ = ids[i];
             ++i;
         }
-        for (; i < n; ++i) *out[__builtin_ctz(masks[i])]++ = ids[i];
+        copyOnes(i, n);
     }
-    scratch.reset();
 
     // Depth of each child: one level below, or for the seed's rule one more level for every
     // earlier sibling (its build passes `++ctr` to the children in turn, empty ones included).
     for (int c = 0; c < 8; ++c) node->childDepth[c] = depth + 1 + (in.rule == Rule::Seed ? c : 0);
 
     auto buildChild = [&](int c) {
-        Ref *list = lists.get() + start[c];
+        Ref *list = lists + start[c];
         const size_t size = counts[c];
         if (size >= in.leafSize && node->childDepth[c] < in.maxDepth) {
             double share = budget * double(size) / double(sum);
@@ -1105,7 +1167,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         uint32_t *out = node->leafIds.get();
         for (int c = 0; c < 8; ++c) {
             if (node->inner[c] || !counts[c]) continue;
-            const Ref *list = lists.get() + start[c];
+            const Ref *list = lists + start[c];
             for (size_t i = 0; i < counts[c]; ++i) out[i] = list[i].id & ~kLooseBit;
             node->refs[c] = {out, counts[c]};
             out += counts[c];

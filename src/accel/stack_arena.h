@@ -1,0 +1,81 @@
+/// \file stack_arena.h
+/// \brief StackArena: per-thread last-in-first-out memory for the octree build's per-node
+/// scratch lists and children's reference lists (octree_build.cpp).
+#pragma once
+
+#include "huge_pages.h"
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+namespace nori::octree_build {
+
+/// \brief Memory handed out like a stack: allocate(), and release() back to an earlier mark().
+/// split() takes its scratch and its children's lists here and gives them back when it returns;
+/// every node below it (built in its turn, or as a task this thread runs while it waits)
+/// takes and returns its own above them first, so the order is always last in, first out.
+/// A malloc and a free per list, and the page faults of blocks that glibc returned to the
+/// system and mapped again, were about 7 % of a 100k-triangle build's thread time.
+///
+/// One arena per thread (local()). Its blocks stay between the nodes of a build; when the
+/// outermost user releases everything they are freed, so nothing is held between builds.
+class StackArena {
+public:
+    struct Mark {
+        size_t block, used;
+    };
+    static StackArena &local() {
+        thread_local StackArena arena;
+        return arena;
+    }
+    StackArena() = default;
+    StackArena(const StackArena &) = delete;
+    StackArena &operator=(const StackArena &) = delete;
+    ~StackArena() { freeFrom(0); }
+
+    Mark mark() const { return {m_block, m_used}; }
+    /// \brief \p n uninitialised elements of a trivial type, 64-byte aligned.
+    template <typename T> T *allocate(size_t n) { return static_cast<T *>(allocateBytes(n * sizeof(T))); }
+    /// \brief Give back everything allocated since \p m.
+    void release(Mark m) {
+        m_block = m.block;
+        m_used = m.used;
+        if (m_block == 0 && m_used == 0) freeFrom(0);
+    }
+
+private:
+    struct Block {
+        char *data;
+        size_t size;
+    };
+    static constexpr size_t kMinBlock = size_t(1) << 20;
+
+    void *allocateBytes(size_t bytes) {
+        bytes = (bytes + 63) & ~size_t(63);
+        if (m_block < m_blocks.size() && m_blocks[m_block].size - m_used >= bytes) {
+            void *p = m_blocks[m_block].data + m_used;
+            m_used += bytes;
+            return p;
+        }
+        // The next block (left from earlier in the build) if it is large enough; else the
+        // blocks from there on are replaced by one that is.
+        const size_t next = m_blocks.empty() ? 0 : m_block + 1;
+        if (next >= m_blocks.size() || m_blocks[next].size < bytes) {
+            freeFrom(next);
+            const size_t size = std::max(2 * bytes, kMinBlock);
+            m_blocks.push_back({static_cast<char *>(allocateLarge(size)), size});
+        }
+        m_block = next;
+        m_used = bytes;
+        return m_blocks[next].data;
+    }
+    void freeFrom(size_t b) {
+        for (size_t k = b; k < m_blocks.size(); ++k) releaseLarge(m_blocks[k].data);
+        m_blocks.resize(std::min(b, m_blocks.size()));
+    }
+
+    std::vector<Block> m_blocks;
+    size_t m_block = 0, m_used = 0;  ///< the block in use and the bytes taken of it
+};
+
+} // namespace nori::octree_build
