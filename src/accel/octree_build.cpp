@@ -266,11 +266,23 @@ struct Classifier {
             return 0;
         unsigned m = 0xFFu;
         for (int a = 0; a < 3; ++a) {
+#ifdef __SSE__
+            // The planes four at a time (padded with +inf, never below a finite point), as
+            // axisMask() counts them: the same comparisons without a loop over the planes.
+            const Float4 v = Float4{} + p[a];
+            unsigned first = unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(planes4[a][0] < v)))));
+            unsigned last = unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(planes4[a][0] <= v)))));
+            if (planes[a] > 3) {
+                first += unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(planes4[a][1] < v)))));
+                last += unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(planes4[a][1] <= v)))));
+            }
+#else
             int first = 0, last = 0;
             for (int k = 0; k < planes[a]; ++k) {
                 first += plane[a][k] < p[a];
                 last += plane[a][k] <= p[a];
             }
+#endif
             m &= range[a][first][last];
         }
         return m;
