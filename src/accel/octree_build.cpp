@@ -266,11 +266,23 @@ struct Classifier {
             return 0;
         unsigned m = 0xFFu;
         for (int a = 0; a < 3; ++a) {
+#ifdef __SSE__
+            // The planes four at a time (padded with +inf, never below a finite point), as
+            // axisMask() counts them: the same comparisons without a loop over the planes.
+            const Float4 v = Float4{} + p[a];
+            unsigned first = unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(planes4[a][0] < v)))));
+            unsigned last = unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(planes4[a][0] <= v)))));
+            if (planes[a] > 3) {
+                first += unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(planes4[a][1] < v)))));
+                last += unsigned(__builtin_popcount(unsigned(__builtin_ia32_movmskps(Float4(planes4[a][1] <= v)))));
+            }
+#else
             int first = 0, last = 0;
             for (int k = 0; k < planes[a]; ++k) {
                 first += plane[a][k] < p[a];
                 last += plane[a][k] <= p[a];
             }
+#endif
             m &= range[a][first][last];
         }
         return m;
@@ -619,41 +631,6 @@ struct Gathered {
         lo[c] = min4(max4(rlo, clips.lo[k]), lo[c]);
         hi[c] = max4(min4(rhi, clips.hi[k]), hi[c]);
     }
-    /// addOne() for references in order, as they come: the current run of references to one
-    /// child is summed in registers and added to the child's sums when the run ends (the
-    /// smaller lower bound of the run's and the child's, the child's on a tie, as one pass in
-    /// order keeps the earlier), so that the next reference does not wait for the store of the
-    /// child's bounds. Most references follow one of the same child (a node's list is its
-    /// parent's list of that child, in order).
-    struct Runs {
-        Gathered &g;
-        int child = -1;
-        size_t count = 0;
-        Float4 lo = {}, hi = {};
-        void add(const Ref &r, int c, const Clips &clips) {
-            const Float4 rlo = load4(r.lo), rhi = load4(r.hi);
-            const int k = (r.id & kLooseBit) ? 8 : c;
-            const Float4 l = max4(rlo, clips.lo[k]), h = min4(rhi, clips.hi[k]);
-            if (c != child) {
-                flush();
-                child = c;
-                count = 1;
-                lo = l;
-                hi = h;
-                return;
-            }
-            ++count;
-            lo = min4(l, lo);
-            hi = max4(h, hi);
-        }
-        void flush() {
-            if (child < 0) return;
-            g.counts[child] += count;
-            g.lo[child] = min4(lo, g.lo[child]);
-            g.hi[child] = max4(hi, g.hi[child]);
-            child = -1;
-        }
-    };
     /// Add the sums of \p g, a later run (ties keep the earlier bound, as one pass would).
     void merge(const Gathered &g) {
         for (int c = 0; c < 8; ++c) {
@@ -844,7 +821,6 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             // first kind, \p gm the second, whose indices go to \p multi.
             auto run = [&](size_t begin, size_t end, Gathered &g, Gathered &gm, Indices &multi) {
                 uint32_t straddle[kBlock];
-                Gathered::Runs runs{g};
                 for (size_t b = begin; b < end; b += kBlock) {
                     const size_t e = std::min(end, b + kBlock);
                     size_t k = 0;
@@ -869,7 +845,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                             }
                         }
                         masks[i] = uint8_t(mask);
-                        runs.add(r, __builtin_ctz(mask), clips);
+                        g.addOne(r, __builtin_ctz(mask), clips);
                     }
                     for (size_t j = 0; j < k; ++j) {
                         const uint32_t i = straddle[j];
@@ -880,7 +856,6 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                         multi.data[multi.count++] = i;
                     }
                 }
-                runs.flush();
             };
             Gathered multi, all;
             single = Gathered();
@@ -1111,31 +1086,15 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     {
         Ref *out[8];
         for (int c = 0; c < 8; ++c) out[c] = lists + start[c];
-        // Between two straddlers every reference goes to one child (its box lies in it), with
-        // the write position of the current run's child in a register (not stored and loaded
-        // again for each reference); the straddlers go to all of theirs (none when kept).
-        auto copyOnes = [&](size_t from, size_t to) {
-            int child = -1;
-            Ref *o = nullptr;
-            for (size_t j = from; j < to; ++j) {
-                const int c = __builtin_ctz(masks[j]);
-                if (c != child) {
-                    if (child >= 0) out[child] = o;
-                    child = c;
-                    o = out[c];
-                }
-                *o++ = ids[j];
-            }
-            if (child >= 0) out[child] = o;
-        };
+        // Between two straddlers every reference goes to one child (its box lies in it); the
+        // straddlers go to all of theirs (none when kept).
         size_t i = 0;
         for (const uint32_t next : straddlers) {
-            copyOnes(i, next);
-            i = next;
+            for (; i < next; ++i) *out[__builtin_ctz(masks[i])]++ = ids[i];
             for (unsigned m = masks[i]; m; m &= m - 1) *out[__builtin_ctz(m)]++ = ids[i];
             ++i;
         }
-        copyOnes(i, n);
+        for (; i < n; ++i) *out[__builtin_ctz(masks[i])]++ = ids[i];
     }
 
     // Depth of each child: one level below, or for the seed's rule one more level for every

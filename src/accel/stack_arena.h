@@ -18,7 +18,7 @@ namespace nori::octree_build {
 /// system and mapped again, were about 7 % of a 100k-triangle build's thread time.
 ///
 /// One arena per thread (local()). Its blocks stay between the nodes of a build; when the
-/// outermost user releases everything they are freed, so nothing is held between builds.
+/// outermost user releases everything, all but the first few MiB are freed (trim()).
 class StackArena {
 public:
     struct Mark {
@@ -40,7 +40,7 @@ public:
     void release(Mark m) {
         m_block = m.block;
         m_used = m.used;
-        if (m_block == 0 && m_used == 0) freeFrom(0);
+        if (m_block == 0 && m_used == 0) trim();
     }
 
 private:
@@ -49,6 +49,7 @@ private:
         size_t size;
     };
     static constexpr size_t kMinBlock = size_t(1) << 20;
+    static constexpr size_t kRetain = size_t(4) << 20;
 
     void *allocateBytes(size_t bytes) {
         bytes = (bytes + 63) & ~size_t(63);
@@ -68,6 +69,16 @@ private:
         m_block = next;
         m_used = bytes;
         return m_blocks[next].data;
+    }
+    /// Once everything is released: the first blocks, up to kRetain bytes, are kept for the
+    /// next build on this thread, the others freed. (Freeing all made repeated builds of
+    /// small scenes fault the same pages in again every time: the 25k-triangle tabletop's build
+    /// took 4.5-4.8 ms instead of 3.5-3.7 ms with malloc; a bounded amount, as malloc itself
+    /// keeps freed memory up to a threshold, not the largest scene's lists for good.)
+    void trim() {
+        size_t keep = 0, bytes = 0;
+        while (keep < m_blocks.size() && bytes + m_blocks[keep].size <= kRetain) bytes += m_blocks[keep++].size;
+        freeFrom(keep);
     }
     void freeFrom(size_t b) {
         for (size_t k = b; k < m_blocks.size(); ++k) releaseLarge(m_blocks[k].data);
