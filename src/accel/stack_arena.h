@@ -8,6 +8,24 @@
 #include <cstddef>
 #include <vector>
 
+// Under AddressSanitizer the arena poisons what it has not handed out, so that an overrun of
+// one list into the next (or a use after release) is reported as it would be with malloc.
+#if defined(__SANITIZE_ADDRESS__)
+#define NORI_ARENA_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define NORI_ARENA_ASAN 1
+#endif
+#endif
+#ifdef NORI_ARENA_ASAN
+#include <sanitizer/asan_interface.h>
+#define NORI_ARENA_POISON(p, n) ASAN_POISON_MEMORY_REGION(p, n)
+#define NORI_ARENA_UNPOISON(p, n) ASAN_UNPOISON_MEMORY_REGION(p, n)
+#else
+#define NORI_ARENA_POISON(p, n) ((void)(p), (void)(n))
+#define NORI_ARENA_UNPOISON(p, n) ((void)(p), (void)(n))
+#endif
+
 namespace nori::octree_build {
 
 /// \brief Memory handed out like a stack: allocate(), and release() back to an earlier mark().
@@ -34,10 +52,16 @@ public:
     ~StackArena() { freeFrom(0); }
 
     Mark mark() const { return {m_block, m_used}; }
-    /// \brief \p n uninitialised elements of a trivial type, 64-byte aligned.
+    /// \brief \p n uninitialised elements of a trivial type, aligned as malloc aligns (16 bytes
+    /// on x86-64; each list starts a multiple of 64 bytes from its block's start).
     template <typename T> T *allocate(size_t n) { return static_cast<T *>(allocateBytes(n * sizeof(T))); }
     /// \brief Give back everything allocated since \p m.
     void release(Mark m) {
+        // (Everything from the mark on: the rest of its block and every later block.)
+        for (size_t b = m.block; b < m_blocks.size() && b <= m_block; ++b) {
+            const size_t from = b == m.block ? m.used : 0;
+            NORI_ARENA_POISON(m_blocks[b].data + from, m_blocks[b].size - from);
+        }
         m_block = m.block;
         m_used = m.used;
         if (m_block == 0 && m_used == 0) trim();
@@ -51,11 +75,12 @@ private:
     static constexpr size_t kMinBlock = size_t(1) << 20;
     static constexpr size_t kRetain = size_t(4) << 20;
 
-    void *allocateBytes(size_t bytes) {
-        bytes = (bytes + 63) & ~size_t(63);
+    void *allocateBytes(size_t requested) {
+        const size_t bytes = (requested + 63) & ~size_t(63);
         if (m_block < m_blocks.size() && m_blocks[m_block].size - m_used >= bytes) {
             void *p = m_blocks[m_block].data + m_used;
             m_used += bytes;
+            NORI_ARENA_UNPOISON(p, requested);
             return p;
         }
         // The next block (left from earlier in the build) if it is large enough; else the
@@ -65,9 +90,11 @@ private:
             freeFrom(next);
             const size_t size = std::max(2 * bytes, kMinBlock);
             m_blocks.push_back({static_cast<char *>(allocateLarge(size)), size});
+            NORI_ARENA_POISON(m_blocks.back().data, size);
         }
         m_block = next;
         m_used = bytes;
+        NORI_ARENA_UNPOISON(m_blocks[next].data, requested);
         return m_blocks[next].data;
     }
     /// Once everything is released: the first blocks, up to kRetain bytes, are kept for the
@@ -81,7 +108,10 @@ private:
         freeFrom(keep);
     }
     void freeFrom(size_t b) {
-        for (size_t k = b; k < m_blocks.size(); ++k) releaseLarge(m_blocks[k].data);
+        for (size_t k = b; k < m_blocks.size(); ++k) {
+            NORI_ARENA_UNPOISON(m_blocks[k].data, m_blocks[k].size);  // (the allocator may reuse it)
+            releaseLarge(m_blocks[k].data);
+        }
         m_blocks.resize(std::min(b, m_blocks.size()));
     }
 
