@@ -54,7 +54,9 @@ int main(int argc, char **argv) {
     }
     MeshTable table(meshes);
     EmbreeOracle robust(meshes, {true, 1}), fast(meshes, {false, 1});
-    OctreeAccel octree{PropertyList()};
+    PropertyList octreeProps;  // NORI_FOLD=0: without wide nodes
+    if (const char *f = std::getenv("NORI_FOLD")) octreeProps.setBoolean("fold", std::string(f) != "0");
+    OctreeAccel octree{octreeProps};
     for (const Mesh *m : meshes) octree.addMesh(m);
     octree.build();
 
@@ -111,9 +113,9 @@ int main(int argc, char **argv) {
                 hits += shadow ? octree.occluded(r) : octree.intersect(r, h);
             }
             double n = double(std::max<size_t>(rays.size(), 1));
-            std::printf("%-8s %8zu rays %5.1f%% hit | per ray: nodes %.2f, kept tris %.2f, leaves %.2f, leaf tris %.2f, chunks %.2f, exact t %.3f\n",
+            std::printf("%-8s %8zu rays %5.1f%% hit | per ray: nodes %.2f (wide %.2f), kept tris %.2f, leaves %.2f, leaf tris %.2f, chunks %.2f, exact t %.3f\n",
                         name, rays.size(), 100.0 * double(hits) / n, double(g_octreeCounters.nodes) / n,
-                        double(g_octreeCounters.keptTris) / n, double(g_octreeCounters.leaves) / n,
+                        double(g_octreeCounters.wideNodes) / n, double(g_octreeCounters.keptTris) / n, double(g_octreeCounters.leaves) / n,
                         double(g_octreeCounters.leafTris) / n, double(g_octreeCounters.chunks) / n,
                         double(g_octreeCounters.exactT) / n);
             std::printf("         kept lists %.2f, their chunks %.2f | leaves/chunks by leaf size (<=16, 32, 64, 128, 256, more):",
@@ -136,9 +138,9 @@ int main(int argc, char **argv) {
             for (int d = 0; d < 40; ++d)
                 if (byDepth[d] > 0) std::printf(" %d:%.2f", d, byDepth[d] / n);
             std::printf("\n         by filled children:");
-            for (int f = 0; f < 9; ++f) std::printf(" %d:%.2f", f, byFilled[f] / n);
+            for (int f = 0; f <= OctreeWideNode::kSlots; ++f) std::printf(" %d:%.2f", f, byFilled[f] / n);
             std::printf("\n         by children entered:");
-            for (int f = 0; f < 9; ++f) std::printf(" %d:%.2f", f, double(g_octreeCounters.entered[f]) / n);
+            for (int f = 0; f <= OctreeWideNode::kSlots; ++f) std::printf(" %d:%.2f", f, double(g_octreeCounters.entered[f]) / n);
             std::printf("\n");
         };
         report("primary", primary, false);

@@ -1,6 +1,8 @@
 /// \file raytime.cpp
 /// \brief nori-raytime: builds the default octree of a scene and traces one of the bench's ray
 /// sets (primary, diffuse or shadow) repeatedly, for a profiler (perf, callgrind): no Embree.
+/// Environment: NORI_LEAFSIZE=N sets leafSize; NORI_AB=PROP times the octree with the boolean
+/// property PROP on against off, side by side in one run, and prints the ratio.
 #include "accel/octree.h"
 #include <ray_sets.h>
 #include <scene_geometry.h>
@@ -66,6 +68,40 @@ int main(int argc, char **argv) {
                               : set == "diffuse" ? diffuseRays(primary, hit, table, 0x62656e63u)
                                                  : lightShadowRays(primary, hit, table, lightAbove(table.bbox()));
     const bool shadow = set == "shadow";
+    if (const char *name = std::getenv("NORI_AB")) {
+        // A/B in one process: the boolean property NORI_AB on (A) and off (B), over the same
+        // rays in alternating slices (A B B A), so that the machine's drift hits both alike.
+        PropertyList pa = props, pb = props;
+        pa.setBoolean(name, true);
+        pb.setBoolean(name, false);
+        OctreeAccel a{pa}, b{pb};
+        for (const Mesh *m : meshes) {
+            a.addMesh(m);
+            b.addMesh(m);
+        }
+        a.build();
+        b.build();
+        const OctreeAccel *order[4] = {&a, &b, &b, &a};
+        double ns[2] = {0, 0};
+        size_t found[2] = {0, 0};
+        constexpr size_t kSlice = 8192;
+        for (int k = 0; k < repeats; ++k)
+            for (size_t first = 0; first < rays.size(); first += kSlice) {
+                const size_t last = std::min(rays.size(), first + kSlice);
+                for (const OctreeAccel *accel : order) {
+                    const int which = accel == &a ? 0 : 1;
+                    const double s0 = cpuNs();
+                    for (size_t i = first; i < last; ++i) {
+                        Hit h;
+                        found[which] += shadow ? accel->occluded(rays[i]) : accel->intersect(rays[i], h);
+                    }
+                    ns[which] += cpuNs() - s0;
+                }
+            }
+        std::printf("%s=true %.1f ns/ray, %s=false %.1f ns/ray, ratio %.3f (%s)\n", name, ns[0] / (2.0 * rays.size() * repeats),
+                    name, ns[1] / (2.0 * rays.size() * repeats), ns[0] / ns[1], found[0] == found[1] ? "same hits" : "HITS DIFFER");
+        return found[0] == found[1] ? 0 : 1;
+    }
     size_t hits = 0;
     auto t2 = cpuNs();
     for (int k = 0; k < repeats; ++k)

@@ -23,7 +23,8 @@
 ///     M::firstN(n) (lanes 0 .. n-1; all when n >= L);
 ///   - U: U(x), U::loadu(p), u.storeu(p), u ^ v, lane(u, j); permute(f or u, idx) (lane j gets
 ///     lane idx[j]); lookup8(table, idx) (L = 1, 8: lane j gets table[idx[j]] from an 8-entry
-///     float or uint32 table, idx[j] < 8); compressStore(m, f or u, dst): the lanes of m packed
+///     float or uint32 table, idx[j] < 8); lookup16 the same from a 16-entry table (L = 1, 8, 16);
+///     U::loadBytes(p) widens L bytes; compressStore(m, f or u, dst): the lanes of m packed
 ///     in lane order at dst, returns their count (dst must have room for L values: lanes past
 ///     the count are scratch); compressStoreBits(bits, f or u, dst) the same with the lanes given
 ///     as a bit mask (bit j = lane j), for a mask already edited in a general register.
@@ -102,6 +103,7 @@ template <> struct VUint<1> {
     VUint() = default;
     VUint(uint32_t x) : i(x) {}
     static VUint loadu(const uint32_t *p) { return *p; }
+    static VUint loadBytes(const uint8_t *p) { return *p; }
     void storeu(uint32_t *p) const { *p = i; }
     friend VUint operator^(VUint a, VUint b) { return a.i ^ b.i; }
     friend uint32_t lane(VUint a, int) { return a.i; }
@@ -109,6 +111,8 @@ template <> struct VUint<1> {
 
 inline VFloat<1> lookup8(const float *table, VUint<1> idx) { return table[idx.i]; }
 inline VUint<1> lookup8(const uint32_t *table, VUint<1> idx) { return table[idx.i]; }
+inline VFloat<1> lookup16(const float *table, VUint<1> idx) { return table[idx.i]; }
+inline VUint<1> lookup16(const uint32_t *table, VUint<1> idx) { return table[idx.i]; }
 
 inline VFloat<1> permute(VFloat<1> a, VUint<1>) { return a; }
 inline VUint<1> permute(VUint<1> a, VUint<1>) { return a; }
@@ -204,6 +208,9 @@ template <> struct VUint<8> {
     VUint(__m256i x) : v(x) {}
     VUint(uint32_t x) : v(_mm256_set1_epi32(int(x))) {}
     static VUint loadu(const uint32_t *p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i *>(p)); }
+    static VUint loadBytes(const uint8_t *p) {
+        return _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(p)));
+    }
     void storeu(uint32_t *p) const { _mm256_storeu_si256(reinterpret_cast<__m256i *>(p), v); }
     friend VUint operator^(VUint a, VUint b) { return _mm256_xor_si256(a.v, b.v); }
     friend uint32_t lane(VUint a, int j) {
@@ -218,6 +225,16 @@ inline VUint<8> permute(VUint<8> a, VUint<8> idx) { return _mm256_permutevar8x32
 // An 8-entry table fits one register: a load and a lane permute instead of a gather.
 inline VFloat<8> lookup8(const float *table, VUint<8> idx) { return permute(VFloat<8>::loadu(table), idx); }
 inline VUint<8> lookup8(const uint32_t *table, VUint<8> idx) { return permute(VUint<8>::loadu(table), idx); }
+// A 16-entry table in two registers: both permuted, the upper half's lanes taken where idx >= 8.
+inline VFloat<8> lookup16(const float *table, VUint<8> idx) {
+    const __m256 upper = _mm256_castsi256_ps(_mm256_slli_epi32(idx.v, 28));  // sign bit = bit 3 of idx
+    return _mm256_blendv_ps(permute(VFloat<8>::loadu(table), idx).v, permute(VFloat<8>::loadu(table + 8), idx).v, upper);
+}
+inline VUint<8> lookup16(const uint32_t *table, VUint<8> idx) {
+    const __m256 upper = _mm256_castsi256_ps(_mm256_slli_epi32(idx.v, 28));
+    return _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(permute(VUint<8>::loadu(table), idx).v),
+                                                _mm256_castsi256_ps(permute(VUint<8>::loadu(table + 8), idx).v), upper));
+}
 
 #if NORI_LANES_AVX512
 // Register compress plus a full store: compressing straight to memory is slow on some cores.
@@ -313,6 +330,7 @@ template <> struct VUint<16> {
     VUint(__m512i x) : v(x) {}
     VUint(uint32_t x) : v(_mm512_set1_epi32(int(x))) {}
     static VUint loadu(const uint32_t *p) { return _mm512_loadu_si512(p); }
+    static VUint loadBytes(const uint8_t *p) { return _mm512_cvtepu8_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i *>(p))); }
     void storeu(uint32_t *p) const { _mm512_storeu_si512(p, v); }
     friend VUint operator^(VUint a, VUint b) { return _mm512_xor_si512(a.v, b.v); }
     friend uint32_t lane(VUint a, int j) {
@@ -324,6 +342,8 @@ template <> struct VUint<16> {
 
 inline VFloat<16> permute(VFloat<16> a, VUint<16> idx) { return _mm512_permutexvar_ps(idx.v, a.v); }
 inline VUint<16> permute(VUint<16> a, VUint<16> idx) { return _mm512_permutexvar_epi32(idx.v, a.v); }
+inline VFloat<16> lookup16(const float *table, VUint<16> idx) { return permute(VFloat<16>::loadu(table), idx); }
+inline VUint<16> lookup16(const uint32_t *table, VUint<16> idx) { return permute(VUint<16>::loadu(table), idx); }
 inline int compressStore(VMask<16> m, VFloat<16> a, float *dst) {
     _mm512_storeu_ps(dst, _mm512_maskz_compress_ps(m.k, a.v));
     return __builtin_popcount(m.k);

@@ -65,6 +65,7 @@ OctreeAccel::OctreeAccel(const PropertyList &props) {
     m_overlap = parseOverlap(props);
     m_traversal = parseTraversal(props);
     m_intersector = parseIntersector(props, "watertight");
+    m_fold = props.getBoolean("fold", true);
 }
 
 bool OctreeAccel::intersect(const Ray3f &ray, Hit &hit) const {
@@ -83,7 +84,8 @@ bool OctreeAccel::occluded(const Ray3f &ray) const {
 }
 
 size_t OctreeAccel::bytes() const {
-    return m_nodes.capacity() * sizeof(OctreeNode) + m_kept.capacity() * sizeof(OctreeKept) + m_triangles.bytes();
+    return m_nodes.capacity() * sizeof(OctreeNode) + m_kept.capacity() * sizeof(OctreeKept) + m_triangles.bytes() +
+           m_wide.capacity() * (sizeof(OctreeWideNode) + sizeof(uint32_t));
 }
 
 std::vector<AccelStat> OctreeAccel::statistics() const {
@@ -99,14 +101,16 @@ std::vector<AccelStat> OctreeAccel::statistics() const {
     stats.push_back({"kept_refs", double(m_stats.keptRefs), true});
     stats.push_back({"kept_nodes", double(m_stats.keptNodes), true});
     stats.push_back({"kept_groups", double(m_stats.keptGroups), true});
+    stats.push_back({"wide_nodes", double(m_stats.wideNodes), true});
+    stats.push_back({"opened_nodes", double(m_stats.openedNodes), true});
     stats.push_back({"bytes", double(bytes()), true});
     return stats;
 }
 
 std::string OctreeAccel::toString() const {
-    return fmt::format("OctreeAccel[buildRule={}, maxDepth={}, leafSize={}, overlap={}, traversal={}, intersector={}]",
+    return fmt::format("OctreeAccel[buildRule={}, maxDepth={}, leafSize={}, overlap={}, traversal={}, fold={}, intersector={}]",
                        buildRuleName(m_buildRule), m_maxDepth, m_leafSize, m_overlap == Overlap::Exact ? "exact" : "bbox",
-                       traversalName(m_traversal), intersectorName(m_intersector));
+                       traversalName(m_traversal), m_fold, intersectorName(m_intersector));
 }
 
 NORI_REGISTER_CLASS(OctreeAccel, "octree", EAccel);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "triangle.h"
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,14 +40,38 @@ struct alignas(64) OctreeNode {
     };
 
     /// A reference to an inner node (in its parent's count, or the root's): kInner, the node's
-    /// pattern code in bits 25-30, and the number of large triangles the node keeps itself
+    /// pattern code in bits 24-29, and the number of large triangles the node keeps itself
     /// (OctreeAccel::m_kept says where they are, in which groups and what boxes they fill).
+    /// With kWide, the simd traversals find the node folded into an OctreeWideNode (child is
+    /// then its index in OctreeAccel::m_wide; fold()).
     static constexpr uint32_t kInner = 0x80000000u;
-    static constexpr int kPatternShift = 25;
+    static constexpr uint32_t kWide = 0x40000000u;
+    static constexpr int kPatternShift = 24;
     static constexpr uint32_t kKeptMask = (1u << kPatternShift) - 1u;
     static uint32_t innerRef(const Pattern &p, uint32_t kept) { return kInner | p.code() << kPatternShift | kept; }
 };
 static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
+
+/// \brief A node of the folded tree (OctreeAccel's simd traversals): up to sixteen cells taken
+/// from two or more levels of the octree below one node, tested in one 16-lane slab test
+/// instead of a chain of 8-child tests (a wide BVH node's idea, Wald et al. 2008, "Getting
+/// rid of packets", applied to an octree's cells). The cells are the leaves of the subtree the
+/// fold opened, so their boxes are the octree's own child boxes, bit for bit. 640 bytes.
+struct alignas(64) OctreeWideNode {
+    static constexpr int kSlots = 16;
+    /// box[axis][s] is the lower bound of slot s, box[axis][16 + s] its upper bound; an unused
+    /// slot has lower = +inf, upper = -inf.
+    float box[3][2 * kSlots];
+    /// As in OctreeNode (inner children may again be wide: kWide).
+    uint32_t child[kSlots];
+    uint32_t count[kSlots];
+    /// order[signs][j]: the slot the traversal's lane j tests for a ray whose direction has
+    /// sign bits \p signs (bit a: d[a] < 0): back to front, the nearest in lane 15. Within each
+    /// opened node its children come in the octant order (OctreeNode::Pattern), so this is the
+    /// same front-to-back order the unfolded tree visits.
+    uint8_t order[8][kSlots];
+};
+static_assert(sizeof(OctreeWideNode) == 640, "OctreeWideNode must be 10 cache lines");
 
 /// \brief One group of an inner node's kept triangles: where they are (word offset in the
 /// TriangleStore), how many, and their bounding box, so that a ray that does not enter the
@@ -63,7 +88,8 @@ struct OctreeKept {
 
 /// \brief Octree accelerator. Properties: `buildRule` (sah* | count | seed), `maxDepth`,
 /// `leafSize` (a node with fewer triangles is a leaf), `overlap` (bbox | exact*), `traversal`
-/// (seed | sorted | simd*), `intersector` (mt | watertight*).
+/// (seed | sorted | simd*), `intersector` (mt | watertight*), `fold` (true* | false: whether
+/// the simd traversals walk the folded tree, see fold()).
 ///
 /// Build (octree_build.cpp): every cell splits at its midpoint; triangles are classified
 /// against the midplanes by their bounding boxes, the separating-axis test only for those that
@@ -93,7 +119,8 @@ public:
     enum class Traversal {
         Seed,    ///< children by distance to their box, stop at the first subtree that hits (inexact)
         Sorted,  ///< exact: children sorted by entry t, skip those beyond the closest hit
-        Simd,    ///< exact: all eight boxes in one 8-lane slab test (NodeRay), visited in the ray's octant order
+        Simd,    ///< exact: all eight boxes in one 8-lane slab test (NodeRay), visited in the ray's octant order;
+                 ///< with `fold`, on the folded tree (16-cell nodes where they save node visits)
     };
     /// \brief How the tree is subdivided.
     enum class BuildRule {
@@ -127,6 +154,12 @@ public:
         const OctreeNode &node;
         const OctreeKept &kept;  ///< its first kept group (ref & OctreeNode::kKeptMask triangles in all)
         const std::vector<OctreeKept> &keptStore;  ///< where kept.next and the later groups point
+        const std::vector<uint32_t> &wideSource;   ///< OctreeAccel::m_wideSource
+        /// \brief The index of inner child \p c (node.count[c] & kInner) among the nodes: after
+        /// fold(), node.child[c] of a child folded into a wide node is the wide node's index.
+        uint32_t childNode(int c) const {
+            return (node.count[c] & OctreeNode::kWide) ? wideSource[node.child[c]] : node.child[c];
+        }
         /// \brief The node's kept groups, in the order the traversals test them.
         std::vector<OctreeKept> keptGroups() const {
             std::vector<OctreeKept> groups;
@@ -141,16 +174,37 @@ public:
     /// \brief Call \p visit for every inner node, parents before children.
     template <typename Visit> void forEachNode(Visit visit) const {
         if (m_nodes.empty()) return;
-        std::vector<std::pair<uint32_t, std::pair<uint32_t, int>>> stack{{0u, {m_rootCount, 0}}};
+        // (A wide reference, kWide, leads to the node its wide node was folded from.)
+        auto unfold = [&](uint32_t child, uint32_t ref) {
+            return (ref & OctreeNode::kWide) ? std::pair{m_wideSource[child], ref & ~OctreeNode::kWide} : std::pair{child, ref};
+        };
+        std::vector<std::pair<std::pair<uint32_t, uint32_t>, int>> stack{{unfold(m_rootChild, m_rootCount), 0}};
         while (!stack.empty()) {
-            auto [index, refDepth] = stack.back();
+            auto [indexRef, depth] = stack.back();
+            auto [index, ref] = indexRef;
             stack.pop_back();
             const OctreeNode &node = m_nodes[index];
-            visit(NodeView{index, refDepth.first, refDepth.second, node, m_kept[index], m_kept});
+            visit(NodeView{index, ref, depth, node, m_kept[index], m_kept, m_wideSource});
             for (int c = 0; c < 8; ++c)
-                if (node.count[c] & OctreeNode::kInner) stack.push_back({node.child[c], {node.count[c], refDepth.second + 1}});
+                if (node.count[c] & OctreeNode::kInner) stack.push_back({unfold(node.child[c], node.count[c]), depth + 1});
         }
     }
+
+    /// \brief One node as the simd traversals see it after fold(): a wide node (16 slots) or a
+    /// plain one (8, an OctreeNode), its slots' children and references, and the node of
+    /// m_nodes it stands for (whose kept groups it tests).
+    struct FoldedView {
+        bool wide;
+        uint32_t index;   ///< in m_wide if wide, else in m_nodes
+        uint32_t source;  ///< in m_nodes
+        uint32_t ref;     ///< the reference that leads to it
+        int slots;
+        const uint32_t *child, *count;
+        const OctreeWideNode *wideNode;  ///< the node itself if wide
+    };
+    /// \brief Call \p visit for every node the simd traversals reach, parents before children.
+    void forEachFoldedNode(const std::function<void(const FoldedView &)> &visit) const;
+    size_t wideNodes() const { return m_wide.size(); }
 
     /// \brief Deepest allowed level (the root is level 0); clamped to kMaxDepthLimit.
     static constexpr int kMaxDepthLimit = 32;
@@ -165,6 +219,8 @@ private:
     bool intersectSorted(const Ray3f &ray, Hit &hit) const;
     bool occludedSorted(const Ray3f &ray) const;
     bool intersectSeed(const Ray3f &ray, Hit &hit) const;
+    // Wide nodes for the simd traversals (octree_fold.cpp).
+    void fold();
 
 
     // Settings.
@@ -174,8 +230,10 @@ private:
     Overlap m_overlap;
     Traversal m_traversal;
     Intersector m_intersector;
+    bool m_fold;
 
-    // Structure: node 0 is the root (always an inner node), referenced as (0, m_rootCount).
+    // Structure: node 0 is the root (always an inner node), referenced as (0, m_rootCount)
+    // (before fold()).
     // m_kept holds, per node, its first kept group (where its triangles are in m_triangles,
     // how many, their box), then the nodes' further groups.
     std::vector<OctreeNode> m_nodes;
@@ -183,10 +241,18 @@ private:
     uint32_t m_rootCount = 0;
     TriangleStore m_triangles;
 
+    // fold(): wide nodes for the simd traversals. Plain nodes whose child was folded refer to
+    // it with kWide; nodes opened into a wide node stay in m_nodes (the other traversals and
+    // forEachNode walk the unfolded tree). m_wideSource: the node each wide node stands for.
+    std::vector<OctreeWideNode> m_wide;
+    std::vector<uint32_t> m_wideSource;
+    uint32_t m_rootChild = 0;  ///< the root: m_nodes[0], or m_wide[m_rootChild] if m_rootCount has kWide
+
     // Statistics of the last build.
     struct Stats {
         size_t internalNodes = 0, leafNodes = 0, emptyLeaves = 0, refs = 0, keptRefs = 0, keptNodes = 0, keptGroups = 0;
         int maxDepthReached = 0;
+        size_t wideNodes = 0, openedNodes = 0;  ///< fold(): wide nodes, and the nodes they replace
     } m_stats;
 };
 
@@ -195,6 +261,7 @@ private:
 /// measuring build only: -DNORI_OCTREE_COUNTERS; single-threaded use).
 struct OctreeCounters {
     uint64_t nodes = 0, keptTris = 0, leaves = 0, leafTris = 0;
+    uint64_t wideNodes = 0;  ///< of nodes, the folded tree's wide ones
     uint64_t chunks = 0, exactT = 0;  ///< triangle chunks tested, t recomputed in double (lanes)
     uint64_t keptLists = 0, keptChunks = 0;  ///< kept lists tested, and their chunks
     /// Leaves tested and their chunks, by leaf size: up to 16, 32, 64, 128, 256 triangles, more.
@@ -202,9 +269,9 @@ struct OctreeCounters {
     /// Kept lists tested and their chunks, by size: up to 4, 16, 64, 256 triangles, more.
     uint64_t keptBySize[5] = {}, keptChunksBySize[5] = {};
     /// If set: visits per inner node (by index), and per visit the children the ray entered
-    /// (1..8, 0: none), for per-depth reports.
+    /// (1..16, 0: none), for per-depth reports.
     std::vector<uint64_t> *nodeVisits = nullptr;
-    uint64_t entered[9] = {};
+    uint64_t entered[OctreeWideNode::kSlots + 1] = {};
 };
 extern OctreeCounters g_octreeCounters;
 #endif

@@ -167,6 +167,7 @@ void OctreeAccel::buildImpl() {
     if (rootIsLeaf) {
         m_stats.leafNodes = 1;
         m_stats.emptyLeaves = root->subtreeRefs == 0;
+        fold();
         return;
     }
     std::vector<const TempNode *> stack{root.get()};
@@ -187,6 +188,7 @@ void OctreeAccel::buildImpl() {
             if (node->refs[c].empty()) ++m_stats.emptyLeaves;
         }
     }
+    fold();
 }
 
 } // namespace nori

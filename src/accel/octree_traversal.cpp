@@ -54,8 +54,11 @@ namespace {
 /// Traversal"): a box is never culled for a ray that touches it.
 constexpr float kSlabEps = 0x1p-20f;
 
-/// Enough for the deepest tree: at most seven siblings and the node's kept groups wait per level.
-constexpr int kStackSize = (7 + OctreeKept::kMaxGroups) * (OctreeAccel::kMaxDepthLimit + 1);
+/// Enough for the deepest tree: at most fifteen cells (of a wide node) and the node's kept
+/// groups wait per level.
+constexpr int kStackSize = (OctreeWideNode::kSlots - 1 + OctreeKept::kMaxGroups) * (OctreeAccel::kMaxDepthLimit + 1);
+/// Room past the stack top for a full-width compress store.
+constexpr int kStackSlack = OctreeWideNode::kSlots;
 
 /// A kept list waiting on the stack is a leaf entry (its offset and count); a measuring build
 /// marks it with this bit so that it is counted as a kept list.
@@ -141,96 +144,116 @@ struct StackEntry {
 };
 
 /// Lanes of the eight-child box test: one child per lane on AVX2 and AVX-512 (whose 16 lanes
-/// would hold only eight children), a loop over the children on one lane elsewhere.
+/// would hold only eight children), a loop over the children on one lane elsewhere. The
+/// sixteen cells of a wide node take all the lanes there are.
 constexpr int kNodeLanes = lanes::kMaxLanes >= 8 ? 8 : 1;
+constexpr int kWideLanes = lanes::kMaxLanes;
 
 /// Lane j < 8 of the node kernel looks at child (7 - j) ^ octant: the ray's back-to-front order,
 /// so that pushed in lane order the nearest child ends up on top of the stack.
 alignas(32) constexpr uint32_t kBackToFront[8] = {7, 6, 5, 4, 3, 2, 1, 0};
 
-/// The eight-child box test, written once over lanes::VFloat<L>. Each lane performs the scalar
-/// SlabRay::hit operations in the same order, so every width gives the same children and entry
-/// distances bit for bit.
+/// Where the cells of a plain node come in the ray's back-to-front order: (7 - j) ^ octant.
 template <int L>
-struct NodeRay {
+struct OctantOrder {
+    uint32_t octant;
+    lanes::VUint<L> lanesAt(int j) const { return lanes::VUint<L>::loadu(kBackToFront + j) ^ lanes::VUint<L>(octant); }
+    uint32_t slot(int j) const { return (7u - uint32_t(j)) ^ octant; }
+};
+/// The same for a wide node: its table for the ray's direction signs.
+template <int L>
+struct TableOrder {
+    const uint8_t *order;
+    lanes::VUint<L> lanesAt(int j) const { return lanes::VUint<L>::loadBytes(order + j); }
+    uint32_t slot(int j) const { return order[j]; }
+};
+
+template <int S, typename T, typename U>
+inline auto lookupCells(const T *table, U idx) {
+    if constexpr (S == 8) return lookup8(table, idx);
+    else return lookup16(table, idx);
+}
+
+/// The box test of a node's S cells (8: OctreeNode, 16: OctreeWideNode), written once over
+/// lanes::VFloat<L>. Each lane performs the scalar SlabRay::hit operations in the same order,
+/// so every width gives the same cells and entry distances bit for bit.
+template <int L, int S>
+struct CellRay {
     using F = lanes::VFloat<L>;
     using U = lanes::VUint<L>;
     F org[3], rcpNear[3], rcpFar[3];
-    uint32_t entryHalf[3];  ///< 8 * neg[a]: where the entry planes start in node.box[a]
+    uint32_t entryHalf[3];  ///< S * neg[a]: where the entry planes start in node.box[a]
     unsigned signs;
 
-    explicit NodeRay(const SlabRay &s) : signs(s.signs) {
+    explicit CellRay(const SlabRay &s) : signs(s.signs) {
         for (int a = 0; a < 3; ++a) {
             org[a] = F(s.o[a]);
             rcpNear[a] = F(s.rcpNear[a]);
             rcpFar[a] = F(s.rcpFar[a]);
-            entryHalf[a] = 8u * uint32_t(s.neg[a]);
+            entryHalf[a] = uint32_t(S) * uint32_t(s.neg[a]);
         }
     }
 
-    /// The children of \p node (reached through a reference with pattern \p code) that the ray
-    /// enters within [mint, maxt]: the nearest in the ray's octant order goes to \p near (child
-    /// and count, as in OctreeNode), the others onto the stack, farthest first, with their entry
-    /// distances; \p entry holds the entry distances of the last block tested, the nearest child's
-    /// in lane \p nearLane. Returns how many were pushed, or -1 when the ray enters no child. Handing the
-    /// nearest child over in registers spares the traversal a store and an immediate reload of
-    /// the stack top (a store-forwarding stall on the hot path), and its cull test: it was
-    /// entered before the closest hit, which cannot have changed since.
-    /// Without \p kEntries (an any-hit query, which culls nothing) the 8-lane test does not
-    /// store the waiting children's entry distances.
-    template <bool kEntries = true>
-    int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
-             float *tnear, uint32_t near[2], F &entry, int &nearLane) const {
-        const uint32_t octant = SlabRay::kOctants[code][signs];
-        const U octantLanes(octant);
+    /// The cells (boxes \p box, children and counts as in OctreeNode) that the ray enters within
+    /// [mint, maxt], visited back to front in lanes as \p order says: the nearest goes to
+    /// \p near (child and count), the others onto the stack, farthest first, with their entry
+    /// distances; \p entry holds the entry distances of the last block tested, the nearest
+    /// cell's in lane \p nearLane. Returns how many were pushed, or -1 when the ray enters no
+    /// cell. Handing the nearest cell over in registers spares the traversal a store and an
+    /// immediate reload of the stack top (a store-forwarding stall on the hot path), and its
+    /// cull test: it was entered before the closest hit, which cannot have changed since.
+    /// Without \p kEntries (an any-hit query, which culls nothing) the one-block test does not
+    /// store the waiting cells' entry distances.
+    template <bool kEntries, typename Order>
+    int push(const float (&box)[3][2 * S], const uint32_t *cellChild, const uint32_t *cellCount, Order order, float mint,
+             float maxt, uint32_t *child, uint32_t *count, float *tnear, uint32_t near[2], F &entry, int &nearLane) const {
         int k = 0;
-        for (int j = 0; j < 8; j += L) {
-            const U c = U::loadu(kBackToFront + j) ^ octantLanes;
+        for (int j = 0; j < S; j += L) {
+            const U c = order.lanesAt(j);
             F t0(mint), t1(maxt);
-            // The slabs of the block's children, each box bound fetched by \p load.
+            // The slabs of the block's cells, each box bound fetched by \p load.
             auto slabs = [&](auto load) {
                 for (int a = 0; a < 3; ++a) {
-                    F tn = (load(node.box[a] + entryHalf[a]) - org[a]) * rcpNear[a];
-                    F tf = (load(node.box[a] + (8 - entryHalf[a])) - org[a]) * rcpFar[a];
+                    F tn = (load(box[a] + entryHalf[a]) - org[a]) * rcpNear[a];
+                    F tf = (load(box[a] + (S - entryHalf[a])) - org[a]) * rcpFar[a];
                     t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
                     t1 = min(tf, t1);
                 }
             };
-            if constexpr (L == 8) {
-                // In the node's own child order, permuted into the ray's order only at the end:
+            if constexpr (L == S) {
+                // In the node's own cell order, permuted into the ray's order only at the end:
                 // the box loads and the arithmetic on them need only the node's address, not the
-                // octant (looked up from the reference's pattern, a chain of its own), so the two
-                // run side by side. Lane-wise operations commute with the permutation: the same
-                // bits as permuting first.
+                // order (a chain of its own), so the two run side by side. Lane-wise operations
+                // commute with the permutation: the same bits as permuting first.
                 slabs([](const float *p) { return F::loadu(p); });
                 t0 = permute(t0, c);
                 t1 = permute(t1, c);
             } else {
-                slabs([&](const float *p) { return lookup8(p, c); });
+                slabs([&](const float *p) { return lookupCells<S>(p, c); });
             }
             // The lanes entered, as bits (edited in a general register, not as a vector mask).
             unsigned hit = bits(t0 <= t1);
-            if constexpr (L == 8) {
-                // One block: the nearest child is the highest set lane; the others are pushed.
+            if constexpr (L == S) {
+                // One block: the nearest cell is the highest set lane; the others are pushed.
                 if (hit == 0) return -1;
                 const int top = 31 - __builtin_clz(hit);
-                const uint32_t nearest = (7u - uint32_t(top)) ^ octant;
-                near[0] = node.child[nearest];
-                near[1] = node.count[nearest];
+                const uint32_t nearest = order.slot(top);
+                near[0] = cellChild[nearest];
+                near[1] = cellCount[nearest];
                 entry = t0;
                 nearLane = top;
                 hit ^= 1u << top;
             }
-            lanes::compressStoreBits(hit, lookup8(node.child, c), child + k);
-            if constexpr (kEntries || L != 8) {
-                lanes::compressStoreBits(hit, lookup8(node.count, c), count + k);
+            lanes::compressStoreBits(hit, lookupCells<S>(cellChild, c), child + k);
+            if constexpr (kEntries || L != S) {
+                lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
                 k += lanes::compressStoreBits(hit, t0, tnear + k);
             } else {
-                k += lanes::compressStoreBits(hit, lookup8(node.count, c), count + k);
+                k += lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
             }
         }
-        if constexpr (L != 8) {
-            // Lane by lane: the last one pushed is the nearest.
+        if constexpr (L != S) {
+            // Block by block, lane by lane: the last one pushed is the nearest.
             if (k == 0) return -1;
             --k;
             near[0] = child[k];
@@ -240,8 +263,26 @@ struct NodeRay {
         }
         return k;
     }
+
+    /// An OctreeNode's children, reached through a reference with pattern \p code.
+    template <bool kEntries = true>
+    int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
+             float *tnear, uint32_t near[2], F &entry, int &nearLane) const {
+        static_assert(S == 8);
+        return push<kEntries>(node.box, node.child, node.count, OctantOrder<L>{SlabRay::kOctants[code][signs]}, mint, maxt,
+                              child, count, tnear, near, entry, nearLane);
+    }
+    /// A wide node's cells.
+    template <bool kEntries = true>
+    int push(const OctreeWideNode &node, float mint, float maxt, uint32_t *child, uint32_t *count, float *tnear,
+             uint32_t near[2], F &entry, int &nearLane) const {
+        static_assert(S == OctreeWideNode::kSlots);
+        return push<kEntries>(node.box, node.child, node.count, TableOrder<L>{node.order[signs]}, mint, maxt, child, count,
+                              tnear, near, entry, nearLane);
+    }
 };
-using SimdRay = NodeRay<kNodeLanes>;
+using SimdRay = CellRay<kNodeLanes, 8>;
+using WideRay = CellRay<kWideLanes, OctreeWideNode::kSlots>;
 
 /// The triangle kernels' per-ray setup (TriangleRay: the watertight shear, three divisions),
 /// made when the ray first reaches a triangle. In sparse scenes (a ground plane, a room, a
@@ -269,7 +310,8 @@ private:
 } // namespace
 
 // ---------------------------------------------------------------------------------------------
-// simd: one 8-box test per node (NodeRay), children in the ray's octant order. For the midpoint split,
+// simd: one 8-box test per node (CellRay), children in the ray's octant order, or one 16-box
+// test per wide node (fold()), cells in its order table's. For the midpoint split,
 // child index XOR the direction's sign bits orders the cells front to back (Revelles et al.
 // 2000's observation); the order only affects speed, exactness comes from culling every
 // entry beyond the closest hit found so far and never stopping early.
@@ -277,26 +319,35 @@ private:
 bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     const SlabRay slab(ray);
     const SimdRay simd(slab);
+    const WideRay wide_(slab);
     LazyTriangleRay tri(ray);
     Hit best;
     best.t = ray.maxt;
 
-    // Structure-of-arrays stack, with room for a full 8-lane store past the top.
-    alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
-    alignas(32) float stackT[kStackSize + 8];
-    uint32_t child = 0, count = m_rootCount;
+    // Structure-of-arrays stack, with room for a full-width store past the top.
+    alignas(64) uint32_t stackChild[kStackSize + kStackSlack], stackCount[kStackSize + kStackSlack];
+    alignas(64) float stackT[kStackSize + kStackSlack];
+    uint32_t child = m_rootChild, count = m_rootCount;
     int sp = 0;
     for (;;) {
         if (count & OctreeNode::kInner) {
             NORI_OCTREE_COUNT(nodes, 1);
-            const OctreeNode &node = m_nodes[child];
             uint32_t near[2];
-            SimdRay::F entry;  // entry distances, the nearest child's in lane nearLane (read where kept groups need it)
+            // Entry distances, the nearest child's in lane nearLane (read where kept groups need it).
+            SimdRay::F entry;
+            WideRay::F wideEntry;
             int nearLane = 0;
-            int pushed = simd.push(node, patternOf(count), ray.mint, tri.cullLimit(best.t), stackChild + sp, stackCount + sp,
-                                   stackT + sp, near, entry, nearLane);
+            const bool wide = count & OctreeNode::kWide;
+            const float maxt = tri.cullLimit(best.t);
+            int pushed = wide ? wide_.push(m_wide[child], ray.mint, maxt, stackChild + sp, stackCount + sp, stackT + sp,
+                                           near, wideEntry, nearLane)
+                              : simd.push(m_nodes[child], patternOf(count), ray.mint, maxt, stackChild + sp,
+                                          stackCount + sp, stackT + sp, near, entry, nearLane);
+            // The node of m_nodes this one stands for: where its kept groups start.
+            const uint32_t source = wide ? m_wideSource[child] : child;
 #ifdef NORI_OCTREE_COUNTERS
-            if (g_octreeCounters.nodeVisits) ++(*g_octreeCounters.nodeVisits)[child];
+            if (g_octreeCounters.nodeVisits) ++(*g_octreeCounters.nodeVisits)[source];
+            g_octreeCounters.wideNodes += wide;
             ++g_octreeCounters.entered[pushed + 1];
 #endif
             // descend: the nearest child is still to be entered; pushed: siblings on the stack.
@@ -306,8 +357,8 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             // now if that box comes before the nearest child, else in order of entry among the
             // waiting children.
             if (count & OctreeNode::kKeptMask) {
-                const float tc = descend ? lane(entry, nearLane) : 0.0f;
-                for (uint32_t g = child;; g = m_kept[g].next) {
+                const float tc = !descend ? 0.0f : wide ? lane(wideEntry, nearLane) : lane(entry, nearLane);
+                for (uint32_t g = source;; g = m_kept[g].next) {
                     const OctreeKept &group = m_kept[g];
                     float tk;
                     if (slab.hit(group, ray.mint, tri.cullLimit(best.t), tk)) {
@@ -356,18 +407,23 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
 bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
     const SlabRay slab(ray);
     const SimdRay simd(slab);
+    const WideRay wide_(slab);
     LazyTriangleRay tri(ray);
 
-    alignas(32) uint32_t stackChild[kStackSize + 8], stackCount[kStackSize + 8];
-    alignas(32) float stackT[kStackSize + 8];
-    uint32_t child = 0, count = m_rootCount;
+    alignas(64) uint32_t stackChild[kStackSize + kStackSlack], stackCount[kStackSize + kStackSlack];
+    alignas(64) float stackT[kStackSize + kStackSlack];
+    uint32_t child = m_rootChild, count = m_rootCount;
     int sp = 0;
     for (;;) {
         if (count & OctreeNode::kInner) {
             NORI_OCTREE_COUNT(nodes, 1);
+            const bool wide = count & OctreeNode::kWide;
+#ifdef NORI_OCTREE_COUNTERS
+            g_octreeCounters.wideNodes += wide;
+#endif
             // The node's own large triangles first (the likeliest occluders), if the ray enters their box.
             if (count & OctreeNode::kKeptMask)
-                for (uint32_t g = child;; g = m_kept[g].next) {
+                for (uint32_t g = wide ? m_wideSource[child] : child;; g = m_kept[g].next) {
                     const OctreeKept &group = m_kept[g];
                     float tk;
                     if (slab.hit(group, ray.mint, ray.maxt, tk) && countedList(true, group.count, [&] {
@@ -378,10 +434,13 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
                 }
             uint32_t near[2];
             SimdRay::F entry;
+            WideRay::F wideEntry;
             int nearLane;
             // (No entry distances: an any-hit query culls nothing.)
-            int pushed = simd.push<false>(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp,
-                                          stackCount + sp, stackT + sp, near, entry, nearLane);
+            int pushed = wide ? wide_.push<false>(m_wide[child], ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
+                                                  stackT + sp, near, wideEntry, nearLane)
+                              : simd.push<false>(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp,
+                                                 stackCount + sp, stackT + sp, near, entry, nearLane);
             if (pushed >= 0) {
                 sp += pushed;
                 child = near[0];

@@ -1,6 +1,7 @@
 /// \file test_lanes.cpp
-/// \brief The lane operations the octree node kernel relies on (lookup8, ^, compressStore) give
-/// the scalar answer at every width compiled into this build, for every mask of eight lanes;
+/// \brief The lane operations the octree node kernels rely on (lookup8, lookup16, loadBytes, ^,
+/// compressStore) give the scalar answer at every width compiled into this build, for every
+/// mask of eight lanes;
 /// maxAbs (the watertight kernel's error bound) is max(|a|, |b|) bit for bit on every finite,
 /// infinite, zero and subnormal pair.
 #include <accel/lanes.h>
@@ -90,3 +91,42 @@ TEST(Lanes, MaxAbsIsTheLargerMagnitudeSixteenLanes) { checkMaxAbs<16>(); }
 #endif
 
 } // namespace
+
+/// lookup16 through indices widened by loadBytes (the wide node kernel's order tables) gives
+/// table[idx] for every lane, at L lanes, for many permutations of sixteen entries.
+template <int L>
+void checkLookup16() {
+    using U = lanes::VUint<L>;
+    float values[16];
+    uint32_t words[16];
+    for (int s = 0; s < 16; ++s) {
+        values[s] = float(s) * 1.5f - 7.0f;
+        words[s] = 0x80000000u | uint32_t(100 + s);
+    }
+    uint8_t order[16];
+    for (int p = 0; p < 64; ++p) {
+        for (int j = 0; j < 16; ++j) order[j] = uint8_t((j * 5 + p * 3 + (j >> 2) * p) % 16);
+        // (Not always a permutation: lookups may repeat an entry.)
+        for (int j = 0; j < 16; j += L) {
+            const U idx = U::loadBytes(order + j);
+            float gotF[16];
+            uint32_t gotU[16];
+            lookup16(values, idx).storeu(gotF);
+            lookup16(words, idx).storeu(gotU);
+            for (int l = 0; l < L; ++l) {
+                EXPECT_EQ(gotF[l], values[order[j + l]]) << "L=" << L << " p=" << p << " lane " << j + l;
+                EXPECT_EQ(gotU[l], words[order[j + l]]) << "L=" << L << " p=" << p << " lane " << j + l;
+            }
+        }
+    }
+}
+
+TEST(Lanes, Lookup16MatchesScalarOneLane) { checkLookup16<1>(); }
+
+#if NORI_LANES_AVX2
+TEST(Lanes, Lookup16MatchesScalarEightLanes) { checkLookup16<8>(); }
+#endif
+
+#if NORI_LANES_AVX512
+TEST(Lanes, Lookup16MatchesScalarSixteenLanes) { checkLookup16<16>(); }
+#endif

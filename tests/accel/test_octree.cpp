@@ -332,7 +332,7 @@ TEST(Octree, StatisticsAreConsistent) {
         std::map<std::string, double> s;
         for (const AccelStat &st : octree->statistics()) s[st.name] = st.value;
         for (const char *key : {"build_ms", "triangles", "internal_nodes", "leaf_nodes", "empty_leaves", "avg_tris_per_leaf",
-                                "max_depth_reached", "triangle_refs", "kept_refs", "kept_nodes", "bytes"})
+                                "max_depth_reached", "triangle_refs", "kept_refs", "kept_nodes", "wide_nodes", "opened_nodes", "bytes"})
             EXPECT_TRUE(s.count(key)) << rule << ": " << key;
         EXPECT_EQ(s["triangles"], double(mesh.triangleCount())) << rule;
         EXPECT_EQ(s["leaf_nodes"], 7 * s["internal_nodes"] + 1) << rule;  // every inner node has 8 child slots
@@ -344,9 +344,11 @@ TEST(Octree, StatisticsAreConsistent) {
             << rule;
         EXPECT_GT(s["max_depth_reached"], 0) << rule;
         // Nodes (256 bytes and a 4-byte kept offset each) and 40 bytes per reference, plus at
-        // most 24 bytes of chunk box per 16 references.
-        EXPECT_GE(s["bytes"], s["internal_nodes"] * (sizeof(OctreeNode) + 4) + 40 * s["triangle_refs"]) << rule;
-        EXPECT_LE(s["bytes"], (s["internal_nodes"] + 1) * (sizeof(OctreeNode) + 4) + 42 * s["triangle_refs"]) << rule;
+        // most 24 bytes of chunk box per 16 references; wide nodes (640 bytes and the index of
+        // the node each stands for).
+        const double wide = s["wide_nodes"] * (sizeof(OctreeWideNode) + 4);
+        EXPECT_GE(s["bytes"], s["internal_nodes"] * (sizeof(OctreeNode) + 4) + 40 * s["triangle_refs"] + wide) << rule;
+        EXPECT_LE(s["bytes"], (s["internal_nodes"] + 1) * (sizeof(OctreeNode) + 4) + 42 * s["triangle_refs"] + wide) << rule;
         // The inspection walk sees the same tree.
         size_t nodes = 0, kept = 0;
         octree_inspect(*octree, [&](const OctreeAccel::NodeView &v) {

@@ -419,7 +419,7 @@ TEST(OctreeBounds, ReferencesAndBytesPerTriangleOnEveryShape) {
                     EXPECT_TRUE((b.min.array() >= parent.min.array()).all() && (b.max.array() <= parent.max.array()).all())
                         << info.name << ": node " << v.index << " child " << c;
                 }
-                if (v.node.count[c] & OctreeNode::kInner) boxOf[v.node.child[c]] = b;
+                if (v.node.count[c] & OctreeNode::kInner) boxOf[v.childNode(c)] = b;
             }
         });
     }
@@ -576,7 +576,7 @@ TEST(OctreeLeaves, NoInnerNodeHoldsOneChunkOrLess) {
             uint64_t own = v.ref & OctreeNode::kKeptMask;
             std::vector<uint32_t> inner;
             for (int c = 0; c < 8; ++c) {
-                if (v.node.count[c] & OctreeNode::kInner) inner.push_back(v.node.child[c]);
+                if (v.node.count[c] & OctreeNode::kInner) inner.push_back(v.childNode(c));
                 else own += v.node.count[c];
             }
             refs[v.index] = own;

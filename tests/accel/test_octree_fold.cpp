@@ -1,0 +1,150 @@
+/// \file test_octree_fold.cpp
+/// \brief The folded tree of the simd traversals (OctreeAccel::fold): it must reach every leaf
+/// and kept list of the octree exactly once, its wide nodes' orders must be permutations of
+/// their slots, and its answers must be the unfolded tree's bit for
+/// bit (same cells, same leaves, same culling: only the number of node tests changes).
+#include <gtest/gtest.h>
+#include "accel/octree.h"
+#include "robust_util.h"
+#include <ray_sets.h>
+#include <scene_generator.h>
+#include <algorithm>
+#include <map>
+
+using namespace nori;
+
+namespace {
+
+std::unique_ptr<Accel> buildOctree(const Mesh &mesh, bool fold) {
+    PropertyList p;
+    p.setBoolean("fold", fold);
+    return robust::makeAccel("octree", p, {&mesh});
+}
+
+const OctreeAccel &asOctree(const Accel &accel) { return dynamic_cast<const OctreeAccel &>(accel); }
+
+/// Shapes whose trees differ in kind: filled surfaces (sphere), a ground with kept triangles
+/// and many small cells (tabletop), boxes on a plane (city), thin triangles (grass).
+const char *const kShapes[] = {"sphere", "tabletop", "city", "grass", "clutter"};
+
+gen::GeneratedScene smallScene(const char *shape) {
+    gen::GenParams params;
+    params.triangles = std::max<uint64_t>(gen::findShape(shape)->minTriangles, 20000);
+    params.seed = 7;
+    return gen::generateScene(shape, params);
+}
+
+/// Leaves (offset, count) and kept starts reachable through the unfolded tree.
+struct Reached {
+    std::map<std::pair<uint32_t, uint32_t>, int> leaves;
+    std::map<uint32_t, int> kept;  ///< node of m_nodes whose kept groups are tested -> times
+    size_t nodes = 0;
+};
+
+Reached reachedUnfolded(const OctreeAccel &octree) {
+    Reached r;
+    octree.forEachNode([&](const OctreeAccel::NodeView &v) {
+        ++r.nodes;
+        if (v.ref & OctreeNode::kKeptMask) ++r.kept[v.index];
+        for (int c = 0; c < 8; ++c)
+            if (v.node.count[c] && !(v.node.count[c] & OctreeNode::kInner)) ++r.leaves[{v.node.child[c], v.node.count[c]}];
+    });
+    return r;
+}
+
+Reached reachedFolded(const OctreeAccel &octree) {
+    Reached r;
+    octree.forEachFoldedNode([&](const OctreeAccel::FoldedView &v) {
+        ++r.nodes;
+        if (v.ref & OctreeNode::kKeptMask) ++r.kept[v.source];
+        for (int s = 0; s < v.slots; ++s)
+            if (v.count[s] && !(v.count[s] & OctreeNode::kInner)) ++r.leaves[{v.child[s], v.count[s]}];
+    });
+    return r;
+}
+
+} // namespace
+
+TEST(OctreeFold, ReachesEveryLeafAndKeptListOnce) {
+    size_t foldedShapes = 0;
+    for (const char *shape : kShapes) {
+        gen::GeneratedScene g = smallScene(shape);
+        Mesh mesh(std::move(g.mesh), shape);
+        auto accel = buildOctree(mesh, true);
+        const OctreeAccel &octree = asOctree(*accel);
+        const Reached unfolded = reachedUnfolded(octree), folded = reachedFolded(octree);
+        EXPECT_EQ(folded.leaves, unfolded.leaves) << shape;
+        EXPECT_EQ(folded.kept, unfolded.kept) << shape;
+        for (const auto &[leaf, times] : folded.leaves) EXPECT_EQ(times, 1) << shape;
+        if (octree.wideNodes()) {
+            ++foldedShapes;
+            EXPECT_LT(folded.nodes, unfolded.nodes) << shape;
+        }
+        // The statistics count what was folded.
+        std::map<std::string, double> s;
+        for (const AccelStat &st : accel->statistics()) s[st.name] = st.value;
+        EXPECT_EQ(s["wide_nodes"], double(octree.wideNodes())) << shape;
+        EXPECT_EQ(double(unfolded.nodes - folded.nodes), s["opened_nodes"]) << shape;
+    }
+    // Not every tree has cells worth folding (thin grass blades fill few of a node's cells),
+    // but most of these do: else the checks above would prove nothing.
+    EXPECT_GE(foldedShapes, 3u);
+}
+
+TEST(OctreeFold, WideOrdersArePermutations) {
+    gen::GeneratedScene g = smallScene("sphere");
+    Mesh mesh(std::move(g.mesh), "sphere");
+    auto accel = buildOctree(mesh, true);
+    size_t wide = 0;
+    asOctree(*accel).forEachFoldedNode([&](const OctreeAccel::FoldedView &v) {
+        if (!v.wide) return;
+        ++wide;
+        const OctreeWideNode &n = *v.wideNode;
+        for (int signs = 0; signs < 8; ++signs) {
+            std::vector<int> seen(OctreeWideNode::kSlots, 0);
+            for (int j = 0; j < OctreeWideNode::kSlots; ++j) ++seen[n.order[signs][j]];
+            for (int s = 0; s < OctreeWideNode::kSlots; ++s) ASSERT_EQ(seen[s], 1) << "slot " << s << " signs " << signs;
+            // Used slots come after the unused ones (lane 0 is the farthest; the nearest cell
+            // is the highest lane the ray enters).
+            bool usedSeen = false;
+            for (int j = 0; j < OctreeWideNode::kSlots; ++j) {
+                const int slot = n.order[signs][j];
+                const bool used = n.count[slot] != 0;
+                if (usedSeen) {
+                    ASSERT_TRUE(used) << "an unused slot after a used one";
+                }
+                usedSeen |= used;
+                // An unused slot is never entered.
+                if (!used) {
+                    ASSERT_GT(n.box[0][slot], n.box[0][OctreeWideNode::kSlots + slot]);
+                }
+            }
+        }
+    });
+    EXPECT_GT(wide, 0u);
+}
+
+TEST(OctreeFold, AnswersAreTheUnfoldedTreesBitForBit) {
+    for (const char *shape : kShapes) {
+        gen::GeneratedScene g = smallScene(shape);
+        std::unique_ptr<Camera> camera = gen::makeCamera(g.camera);
+        Mesh mesh(std::move(g.mesh), shape);
+        auto folded = buildOctree(mesh, true), unfolded = buildOctree(mesh, false);
+        ASSERT_EQ(asOctree(*unfolded).wideNodes(), 0u);
+        std::vector<Ray3f> rays = cameraRays(*camera, 1, 3);
+        if (rays.size() > 60000) rays.resize(60000);
+        const std::vector<Ray3f> box = randomBoxRays(mesh.bbox(), 20000, 5);
+        rays.insert(rays.end(), box.begin(), box.end());
+        size_t differ = 0, hits = 0;
+        for (const Ray3f &ray : rays) {
+            Hit a, b;
+            const bool fa = folded->intersect(ray, a), fb = unfolded->intersect(ray, b);
+            hits += fa;
+            const bool same = fa == fb && (!fa || (a.prim == b.prim && a.t == b.t && a.u == b.u && a.v == b.v)) &&
+                              folded->occluded(ray) == unfolded->occluded(ray);
+            differ += !same;
+        }
+        EXPECT_EQ(differ, 0u) << shape << " (" << rays.size() << " rays)";
+        EXPECT_GT(hits, rays.size() / 10) << shape;
+    }
+}
