@@ -1,6 +1,7 @@
 /// \file octree.cpp
 /// \brief Octree accelerator: properties, dispatch and statistics.
 #include "octree.h"
+#include "lanes.h"
 
 namespace nori {
 
@@ -65,7 +66,12 @@ OctreeAccel::OctreeAccel(const PropertyList &props) {
     m_overlap = parseOverlap(props);
     m_traversal = parseTraversal(props);
     m_intersector = parseIntersector(props, "watertight");
-    m_fold = props.getBoolean("fold", true);
+    // Wide nodes pay where one instruction tests their sixteen boxes (AVX-512: 0.89-0.97x the
+    // unfolded tree's ray time on the shapes that fold, bench/README.md). With eight lanes
+    // they take two blocks and a two-register lookup per box bound: measured slower than the
+    // chain of nodes they replace (AVX2, clutter primary 1.08x; eight-slot wide nodes, which
+    // fit one block, fold too little to matter: 0.99-1.01x). Tests turn it on at every width.
+    m_fold = props.getBoolean("fold", lanes::kMaxLanes >= OctreeWideNode::kSlots);
 }
 
 bool OctreeAccel::intersect(const Ray3f &ray, Hit &hit) const {

@@ -54,19 +54,19 @@ static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
 
 /// \brief A node of the folded tree (OctreeAccel's simd traversals): up to sixteen cells taken
 /// from two or more levels of the octree below one node, tested in one 16-lane slab test
-/// instead of a chain of 8-child tests (a wide BVH node's idea, Wald et al. 2008, "Getting
-/// rid of packets", applied to an octree's cells). The cells are the leaves of the subtree the
+/// instead of a chain of 8-child tests (a wide BVH node's idea, Wald et al. 2008, "Getting rid
+/// of packets", applied to an octree's cells). The cells are the leaves of the subtree the
 /// fold opened, so their boxes are the octree's own child boxes, bit for bit. 640 bytes.
 struct alignas(64) OctreeWideNode {
     static constexpr int kSlots = 16;
-    /// box[axis][s] is the lower bound of slot s, box[axis][16 + s] its upper bound; an unused
+    /// box[axis][s] is the lower bound of slot s, box[axis][kSlots + s] its upper bound; an unused
     /// slot has lower = +inf, upper = -inf.
     float box[3][2 * kSlots];
     /// As in OctreeNode (inner children may again be wide: kWide).
     uint32_t child[kSlots];
     uint32_t count[kSlots];
     /// order[signs][j]: the slot the traversal's lane j tests for a ray whose direction has
-    /// sign bits \p signs (bit a: d[a] < 0): back to front, the nearest in lane 15. Within each
+    /// sign bits \p signs (bit a: d[a] < 0): back to front, the nearest in the last lane. Within each
     /// opened node its children come in the octant order (OctreeNode::Pattern), so this is the
     /// same front-to-back order the unfolded tree visits.
     uint8_t order[8][kSlots];
@@ -88,8 +88,8 @@ struct OctreeKept {
 
 /// \brief Octree accelerator. Properties: `buildRule` (sah* | count | seed), `maxDepth`,
 /// `leafSize` (a node with fewer triangles is a leaf), `overlap` (bbox | exact*), `traversal`
-/// (seed | sorted | simd*), `intersector` (mt | watertight*), `fold` (true* | false: whether
-/// the simd traversals walk the folded tree, see fold()).
+/// (seed | sorted | simd*), `intersector` (mt | watertight*), `fold` (whether the simd
+/// traversals use wide nodes, see fold(); default: where the machine tests 16 lanes at once).
 ///
 /// Build (octree_build.cpp): every cell splits at its midpoint; triangles are classified
 /// against the midplanes by their bounding boxes, the separating-axis test only for those that
@@ -120,7 +120,7 @@ public:
         Seed,    ///< children by distance to their box, stop at the first subtree that hits (inexact)
         Sorted,  ///< exact: children sorted by entry t, skip those beyond the closest hit
         Simd,    ///< exact: all eight boxes in one 8-lane slab test (NodeRay), visited in the ray's octant order;
-                 ///< with `fold`, on the folded tree (16-cell nodes where they save node visits)
+                 ///< with `fold`, on the folded tree (wide nodes where they save node visits)
     };
     /// \brief How the tree is subdivided.
     enum class BuildRule {
@@ -190,7 +190,7 @@ public:
         }
     }
 
-    /// \brief One node as the simd traversals see it after fold(): a wide node (16 slots) or a
+    /// \brief One node as the simd traversals see it after fold(): a wide node (kSlots) or a
     /// plain one (8, an OctreeNode), its slots' children and references, and the node of
     /// m_nodes it stands for (whose kept groups it tests).
     struct FoldedView {

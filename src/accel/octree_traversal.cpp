@@ -54,7 +54,7 @@ namespace {
 /// Traversal"): a box is never culled for a ray that touches it.
 constexpr float kSlabEps = 0x1p-20f;
 
-/// Enough for the deepest tree: at most fifteen cells (of a wide node) and the node's kept
+/// Enough for the deepest tree: at most kSlots - 1 cells (of a wide node) and the node's kept
 /// groups wait per level.
 constexpr int kStackSize = (OctreeWideNode::kSlots - 1 + OctreeKept::kMaxGroups) * (OctreeAccel::kMaxDepthLimit + 1);
 /// Room past the stack top for a full-width compress store.
@@ -174,7 +174,7 @@ inline auto lookupCells(const T *table, U idx) {
     else return lookup16(table, idx);
 }
 
-/// The box test of a node's S cells (8: OctreeNode, 16: OctreeWideNode), written once over
+/// The box test of a node's S cells (8: OctreeNode; kSlots: OctreeWideNode), written once over
 /// lanes::VFloat<L>. Each lane performs the scalar SlabRay::hit operations in the same order,
 /// so every width gives the same cells and entry distances bit for bit.
 template <int L, int S>
