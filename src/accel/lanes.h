@@ -24,7 +24,8 @@
 ///   - U: U(x), U::loadu(p), u.storeu(p), u ^ v, lane(u, j); permute(f or u, idx) (lane j gets
 ///     lane idx[j]); lookup8(table, idx) (L = 1, 8: lane j gets table[idx[j]] from an 8-entry
 ///     float or uint32 table, idx[j] < 8); lookup16 the same from a 16-entry table (L = 1, 8, 16);
-///     U::loadBytes(p) widens L bytes; compressStore(m, f or u, dst): the lanes of m packed
+///     U::loadBytes(p) widens L bytes; bitsAt(word, idx): bit j = bit idx[j] of word (idx[j] < 32);
+///     compressStore(m, f or u, dst): the lanes of m packed
 ///     in lane order at dst, returns their count (dst must have room for L values: lanes past
 ///     the count are scratch); compressStoreBits(bits, f or u, dst) the same with the lanes given
 ///     as a bit mask (bit j = lane j), for a mask already edited in a general register.
@@ -111,6 +112,7 @@ template <> struct VUint<1> {
 
 inline VFloat<1> lookup8(const float *table, VUint<1> idx) { return table[idx.i]; }
 inline VUint<1> lookup8(const uint32_t *table, VUint<1> idx) { return table[idx.i]; }
+inline unsigned bitsAt(uint32_t word, VUint<1> idx) { return (word >> idx.i) & 1u; }
 inline VFloat<1> lookup16(const float *table, VUint<1> idx) { return table[idx.i]; }
 inline VUint<1> lookup16(const uint32_t *table, VUint<1> idx) { return table[idx.i]; }
 
@@ -225,6 +227,11 @@ inline VUint<8> permute(VUint<8> a, VUint<8> idx) { return _mm256_permutevar8x32
 // An 8-entry table fits one register: a load and a lane permute instead of a gather.
 inline VFloat<8> lookup8(const float *table, VUint<8> idx) { return permute(VFloat<8>::loadu(table), idx); }
 inline VUint<8> lookup8(const uint32_t *table, VUint<8> idx) { return permute(VUint<8>::loadu(table), idx); }
+// Variable shifts: each lane's bit of the word to the sign bit, gathered as a mask.
+inline unsigned bitsAt(uint32_t word, VUint<8> idx) {
+    const __m256i bit = _mm256_slli_epi32(_mm256_srlv_epi32(_mm256_set1_epi32(int(word)), idx.v), 31);
+    return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(bit)));
+}
 // A 16-entry table in two registers: both permuted, the upper half's lanes taken where idx >= 8.
 inline VFloat<8> lookup16(const float *table, VUint<8> idx) {
     const __m256 upper = _mm256_castsi256_ps(_mm256_slli_epi32(idx.v, 28));  // sign bit = bit 3 of idx
@@ -342,6 +349,9 @@ template <> struct VUint<16> {
 
 inline VFloat<16> permute(VFloat<16> a, VUint<16> idx) { return _mm512_permutexvar_ps(idx.v, a.v); }
 inline VUint<16> permute(VUint<16> a, VUint<16> idx) { return _mm512_permutexvar_epi32(idx.v, a.v); }
+inline unsigned bitsAt(uint32_t word, VUint<16> idx) {
+    return _mm512_test_epi32_mask(_mm512_srlv_epi32(_mm512_set1_epi32(int(word)), idx.v), _mm512_set1_epi32(1));
+}
 inline VFloat<16> lookup16(const float *table, VUint<16> idx) { return permute(VFloat<16>::loadu(table), idx); }
 inline VUint<16> lookup16(const uint32_t *table, VUint<16> idx) { return permute(VUint<16>::loadu(table), idx); }
 inline int compressStore(VMask<16> m, VFloat<16> a, float *dst) {

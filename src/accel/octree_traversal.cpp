@@ -207,61 +207,75 @@ struct CellRay {
     template <bool kEntries, typename Order>
     int push(const float (&box)[3][2 * S], const uint32_t *cellChild, const uint32_t *cellCount, Order order, float mint,
              float maxt, uint32_t *child, uint32_t *count, float *tnear, uint32_t near[2], F &entry, int &nearLane) const {
-        int k = 0;
-        for (int j = 0; j < S; j += L) {
-            const U c = order.lanesAt(j);
-            F t0(mint), t1(maxt);
-            // The slabs of the block's cells, each box bound fetched by \p load.
-            auto slabs = [&](auto load) {
-                for (int a = 0; a < 3; ++a) {
-                    F tn = (load(box[a] + entryHalf[a]) - org[a]) * rcpNear[a];
-                    F tf = (load(box[a] + (S - entryHalf[a])) - org[a]) * rcpFar[a];
-                    t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
-                    t1 = min(tf, t1);
-                }
-            };
-            if constexpr (L == S) {
-                // In the node's own cell order, permuted into the ray's order only at the end:
-                // the box loads and the arithmetic on them need only the node's address, not the
-                // order (a chain of its own), so the two run side by side. Lane-wise operations
-                // commute with the permutation: the same bits as permuting first.
-                slabs([](const float *p) { return F::loadu(p); });
-                t0 = permute(t0, c);
-                t1 = permute(t1, c);
-            } else {
-                slabs([&](const float *p) { return lookupCells<S>(p, c); });
+        // The slabs of L cells from \p first in the node's own order: entry and exit distances.
+        // The box loads and the arithmetic on them need only the node's address, not the
+        // order (a chain of its own), so the two run side by side.
+        auto slabs = [&](int first, F &t0, F &t1) {
+            t0 = F(mint);
+            t1 = F(maxt);
+            for (int a = 0; a < 3; ++a) {
+                F tn = (F::loadu(box[a] + entryHalf[a] + first) - org[a]) * rcpNear[a];
+                F tf = (F::loadu(box[a] + (S - entryHalf[a]) + first) - org[a]) * rcpFar[a];
+                t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
+                t1 = min(tf, t1);
             }
-            // The lanes entered, as bits (edited in a general register, not as a vector mask).
+        };
+        if constexpr (L == S) {
+            // One block, permuted into the ray's order at the end (lane-wise operations commute
+            // with the permutation: the same bits as permuting first).
+            const U c = order.lanesAt(0);
+            F t0, t1;
+            slabs(0, t0, t1);
+            t0 = permute(t0, c);
+            t1 = permute(t1, c);
+            // The lanes entered, as bits (edited in a general register, not as a vector mask):
+            // the nearest cell is the highest set lane; the others are pushed.
             unsigned hit = bits(t0 <= t1);
-            if constexpr (L == S) {
-                // One block: the nearest cell is the highest set lane; the others are pushed.
-                if (hit == 0) return -1;
-                const int top = 31 - __builtin_clz(hit);
-                const uint32_t nearest = order.slot(top);
-                near[0] = cellChild[nearest];
-                near[1] = cellCount[nearest];
-                entry = t0;
-                nearLane = top;
-                hit ^= 1u << top;
-            }
-            lanes::compressStoreBits(hit, lookupCells<S>(cellChild, c), child + k);
-            if constexpr (kEntries || L != S) {
-                lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
-                k += lanes::compressStoreBits(hit, t0, tnear + k);
+            if (hit == 0) return -1;
+            const int top = 31 - __builtin_clz(hit);
+            const uint32_t nearest = order.slot(top);
+            near[0] = cellChild[nearest];
+            near[1] = cellCount[nearest];
+            entry = t0;
+            nearLane = top;
+            hit ^= 1u << top;
+            lanes::compressStoreBits(hit, permute(U::loadu(cellChild), c), child);
+            if constexpr (kEntries) {
+                lanes::compressStoreBits(hit, permute(U::loadu(cellCount), c), count);
+                return lanes::compressStoreBits(hit, t0, tnear);
             } else {
-                k += lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
+                return lanes::compressStoreBits(hit, permute(U::loadu(cellCount), c), count);
             }
-        }
-        if constexpr (L != S) {
-            // Block by block, lane by lane: the last one pushed is the nearest.
-            if (k == 0) return -1;
+        } else {
+            // Several blocks: all cells in the node's order first (plain loads, no lookups
+            // per box bound), their hits as bits and their entry distances in \p entries; then
+            // block by block in the ray's order, each lane looking up its cell's bit and entry.
+            alignas(64) float entries[S];
+            uint32_t hitCells = 0;
+            for (int first = 0; first < S; first += L) {
+                F t0, t1;
+                slabs(first, t0, t1);
+                hitCells |= bits(t0 <= t1) << first;
+                t0.storeu(entries + first);
+            }
+            if (hitCells == 0) return -1;
+            int k = 0;
+            for (int j = 0; j < S; j += L) {
+                const U c = order.lanesAt(j);
+                const unsigned hit = lanes::bitsAt(hitCells, c);
+                if (hit == 0) continue;
+                lanes::compressStoreBits(hit, lookupCells<S>(cellChild, c), child + k);
+                lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
+                k += lanes::compressStoreBits(hit, lookupCells<S>(static_cast<const float *>(entries), c), tnear + k);
+            }
+            // The last one pushed is the nearest.
             --k;
             near[0] = child[k];
             near[1] = count[k];
             entry = F(tnear[k]);
             nearLane = 0;
+            return k;
         }
-        return k;
     }
 
     /// An OctreeNode's children, reached through a reference with pattern \p code.
