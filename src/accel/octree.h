@@ -202,6 +202,11 @@ public:
         const uint32_t *child, *count;
         const OctreeWideNode *wideNode;  ///< the node itself if wide
     };
+    /// \brief The index among the nodes (as in NodeView) of the inner child reached through
+    /// (\p child, \p ref): a wide reference leads to the node its wide node stands for.
+    uint32_t nodeIndexOf(uint32_t child, uint32_t ref) const {
+        return (ref & OctreeNode::kWide) ? m_wideSource[child] : child;
+    }
     /// \brief Call \p visit for every node the simd traversals reach, parents before children.
     void forEachFoldedNode(const std::function<void(const FoldedView &)> &visit) const;
     size_t wideNodes() const { return m_wide.size(); }

@@ -1,7 +1,7 @@
 /// \file test_octree_fold.cpp
 /// \brief The folded tree of the simd traversals (OctreeAccel::fold): it must reach every leaf
 /// and kept list of the octree exactly once, its wide nodes' orders must be permutations of
-/// their slots, and its answers must be the unfolded tree's bit for
+/// their slots that list the cells in the unfolded tree's front-to-back order, and its answers must be the unfolded tree's bit for
 /// bit (same cells, same leaves, same culling: only the number of node tests changes).
 #include <gtest/gtest.h>
 #include "accel/octree.h"
@@ -9,6 +9,7 @@
 #include <ray_sets.h>
 #include <scene_generator.h>
 #include <algorithm>
+#include <functional>
 #include <map>
 
 using namespace nori;
@@ -147,4 +148,55 @@ TEST(OctreeFold, AnswersAreTheUnfoldedTreesBitForBit) {
         EXPECT_EQ(differ, 0u) << shape << " (" << rays.size() << " rays)";
         EXPECT_GT(hits, rays.size() / 10) << shape;
     }
+}
+
+// For every wide node and direction-sign combination, the order table lists the cells as the
+// unfolded traversal meets them: walking the opened nodes below the wide node's own node,
+// children in the octant order (OctreeNode::Pattern), front to back. (The order only affects
+// speed; a wrong one would cull less without changing an answer, so only this test sees it.)
+TEST(OctreeFold, WideOrdersAreTheUnfoldedFrontToBackOrder) {
+    size_t checked = 0;
+    for (const char *shape : {"sphere", "clutter", "tabletop"}) {
+        gen::GeneratedScene g = smallScene(shape);
+        Mesh mesh(std::move(g.mesh), shape);
+        auto accel = buildOctree(mesh, true);
+        const OctreeAccel &octree = asOctree(*accel);
+        std::map<uint32_t, std::pair<const OctreeNode *, uint32_t>> nodes;  // index -> node, its reference
+        octree.forEachNode([&](const OctreeAccel::NodeView &v) { nodes[v.index] = {&v.node, v.ref}; });
+        octree.forEachFoldedNode([&](const OctreeAccel::FoldedView &v) {
+            if (!v.wide) return;
+            // A cell is named by its leaf (offset, count) or its node's index.
+            auto cellName = [&](uint32_t child, uint32_t count) -> std::pair<uint64_t, uint32_t> {
+                if (count & OctreeNode::kInner) return {uint64_t(1) << 32 | octree.nodeIndexOf(child, count), 0};
+                return {child, count};
+            };
+            std::map<std::pair<uint64_t, uint32_t>, int> slotOf;
+            for (int s = 0; s < OctreeWideNode::kSlots; ++s)
+                if (v.count[s]) slotOf[cellName(v.child[s], v.count[s])] = s;
+            for (unsigned signs = 0; signs < 8; ++signs) {
+                std::vector<int> expected;  // front to back
+                std::function<void(uint32_t)> walk = [&](uint32_t index) {
+                    const auto [node, ref] = nodes.at(index);
+                    const OctreeNode::Pattern p = OctreeNode::Pattern::fromCode((ref >> OctreeNode::kPatternShift) & 63u);
+                    uint32_t octant = 0;
+                    for (int l = 0; l < 3; ++l) octant |= ((signs >> p.axis[l]) & 1u) << (2 - l);
+                    for (uint32_t j = 0; j < 8; ++j) {
+                        const uint32_t c = j ^ octant;
+                        if (!node->count[c]) continue;
+                        const auto name = cellName(node->child[c], node->count[c]);
+                        if (slotOf.count(name)) expected.push_back(slotOf.at(name));
+                        else if (node->count[c] & OctreeNode::kInner) walk(octree.nodeIndexOf(node->child[c], node->count[c]));
+                        else ADD_FAILURE() << shape << ": a leaf of an opened node is no slot of its wide node";
+                    }
+                };
+                walk(v.source);
+                std::vector<int> got;  // the used slots, front to back (the table is back to front)
+                for (int j = OctreeWideNode::kSlots - 1; j >= 0; --j)
+                    if (v.count[v.wideNode->order[signs][j]]) got.push_back(v.wideNode->order[signs][j]);
+                ASSERT_EQ(got, expected) << shape << ": wide node " << v.index << ", signs " << signs;
+                ++checked;
+            }
+        });
+    }
+    EXPECT_GT(checked, 0u);
 }
