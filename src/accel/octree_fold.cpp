@@ -35,14 +35,23 @@ float surfaceArea(const float lo[3], const float hi[3]) {
     return 2.0f * (x * y + y * z + z * x);
 }
 
-/// The octant of a node with pattern \p code for a ray with direction signs \p signs (bit a:
-/// d[a] < 0): children in the order c ^ octant come front to back (OctreeNode::Pattern).
-uint32_t octantOf(uint32_t code, unsigned signs) {
-    const OctreeNode::Pattern p = OctreeNode::Pattern::fromCode(code);
-    uint32_t oct = 0;
-    for (int l = 0; l < 3; ++l) oct |= ((signs >> (p.axis[l] & 3u)) & 1u) << (2 - l);
-    return oct;
-}
+/// kOctants[code][signs]: the octant of a node with pattern code \p code for a ray with
+/// direction signs \p signs (bit a: d[a] < 0); children in the order c ^ octant come front to
+/// back (OctreeNode::Pattern).
+struct OctantTable {
+    uint8_t octant[64][8];
+    OctantTable() {
+        for (uint32_t code = 0; code < 64; ++code) {
+            const OctreeNode::Pattern p = OctreeNode::Pattern::fromCode(code);
+            for (unsigned signs = 0; signs < 8; ++signs) {
+                uint32_t oct = 0;
+                for (int l = 0; l < 3; ++l) oct |= ((signs >> (p.axis[l] & 3u)) & 1u) << (2 - l);
+                octant[code][signs] = uint8_t(oct);
+            }
+        }
+    }
+};
+const OctantTable kOctants;
 
 /// One cell of a node being folded: a child of the node or of a node it opened.
 struct Slot {
@@ -68,12 +77,22 @@ int filledChildren(const OctreeNode &node) {
     return n;
 }
 
+/// The cells being folded into one node: at most sixteen (fold() checks before it opens one).
+struct SlotList {
+    Slot items[OctreeWideNode::kSlots];
+    size_t n = 0;
+    void erase(size_t i) {
+        for (; i + 1 < n; ++i) items[i] = items[i + 1];
+        --n;
+    }
+};
+
 /// The filled children of \p node (reached through \p ref), as slots one level below \p parent's.
-void appendChildren(const OctreeNode &node, uint32_t ref, const Slot *parent, std::vector<Slot> &out) {
-    const uint32_t code = patternOf(ref);
+void appendChildren(const OctreeNode &node, uint32_t ref, const Slot *parent, SlotList &out) {
+    const uint8_t *octant = kOctants.octant[patternOf(ref)];
     for (int c = 0; c < 8; ++c) {
         if (isEmpty(node, c)) continue;
-        Slot s;
+        Slot &s = out.items[out.n++];
         s.child = node.child[c];
         s.count = node.count[c];
         for (int a = 0; a < 3; ++a) {
@@ -82,8 +101,7 @@ void appendChildren(const OctreeNode &node, uint32_t ref, const Slot *parent, st
         }
         s.levels = parent ? parent->levels + 1 : 0;
         for (unsigned signs = 0; signs < 8; ++signs)
-            s.key[signs] = (parent ? parent->key[signs] << 3 : 0u) | (uint32_t(c) ^ octantOf(code, signs));
-        out.push_back(s);
+            s.key[signs] = (parent ? parent->key[signs] << 3 : 0u) | (uint32_t(c) ^ octant[signs]);
     }
 }
 
@@ -101,14 +119,21 @@ public:
     /// Fold the node \p index of m_nodes, reached through \p ref, and its subtree; returns the
     /// reference that now leads to it and sets \p child to its index (in m_wide if kWide).
     uint32_t fold(uint32_t index, uint32_t ref, uint32_t &child) {
-        std::vector<Slot> slots;
-        slots.reserve(OctreeWideNode::kSlots);
+        // Most nodes (those above leaves only) have no child to open: they stay plain at once.
+        bool openable = false;
+        for (int c = 0; c < 8; ++c) {
+            const uint32_t r = m_nodes[index].count[c];
+            openable |= (r & OctreeNode::kInner) && !(r & OctreeNode::kKeptMask);
+        }
+        if (!openable) return keepPlain(index, ref, child);
+        SlotList slots;
         appendChildren(m_nodes[index], ref, nullptr, slots);
 
         // Open the largest cells first, while they fit in sixteen slots.
         float lo[3] = {Infinity, Infinity, Infinity}, hi[3] = {-Infinity, -Infinity, -Infinity};
-        for (const Slot &s : slots)
+        for (size_t i = 0; i < slots.n; ++i)
             for (int a = 0; a < 3; ++a) {
+                const Slot &s = slots.items[i];
                 lo[a] = std::min(lo[a], s.lo[a]);
                 hi[a] = std::max(hi[a], s.hi[a]);
             }
@@ -118,10 +143,10 @@ public:
         for (;;) {
             int best = -1;
             float bestArea = -1.0f;
-            for (size_t i = 0; i < slots.size(); ++i) {
-                const Slot &s = slots[i];
+            for (size_t i = 0; i < slots.n; ++i) {
+                const Slot &s = slots.items[i];
                 if (!s.openable()) continue;
-                if (slots.size() - 1 + size_t(filledChildren(m_nodes[s.child])) > size_t(OctreeWideNode::kSlots)) continue;
+                if (slots.n - 1 + size_t(filledChildren(m_nodes[s.child])) > size_t(OctreeWideNode::kSlots)) continue;
                 const float a = surfaceArea(s.lo, s.hi);
                 if (a > bestArea) {
                     bestArea = a;
@@ -129,36 +154,24 @@ public:
                 }
             }
             if (best < 0) break;
-            const Slot s = slots[size_t(best)];
-            slots.erase(slots.begin() + best);
+            const Slot s = slots.items[size_t(best)];
+            slots.erase(size_t(best));
             appendChildren(m_nodes[s.child], s.count, &s, slots);
             gain += area > 0.0f ? bestArea / area : 1.0f;
             ++opens;
         }
 
-        if (gain < kWideGain) {
-            // Stays plain: only its inner children's references may change.
-            child = index;
-            for (int c = 0; c < 8; ++c) {
-                const uint32_t r = m_nodes[index].count[c];
-                if (!(r & OctreeNode::kInner)) continue;
-                uint32_t sub;
-                const uint32_t subRef = fold(m_nodes[index].child[c], r, sub);
-                m_nodes[index].child[c] = sub;
-                m_nodes[index].count[c] = subRef;
-            }
-            return ref;
-        }
+        if (gain < kWideGain) return keepPlain(index, ref, child);
         opened += opens;
         child = uint32_t(m_wide.size());
         m_wide.emplace_back();
         m_source.push_back(index);
         writeWide(child, slots);
         // The cells' subtrees after the node itself (m_wide may move meanwhile: index, not reference).
-        for (size_t i = 0; i < slots.size(); ++i) {
-            if (!(slots[i].count & OctreeNode::kInner)) continue;
+        for (size_t i = 0; i < slots.n; ++i) {
+            if (!(slots.items[i].count & OctreeNode::kInner)) continue;
             uint32_t sub;
-            const uint32_t subRef = fold(slots[i].child, slots[i].count, sub);
+            const uint32_t subRef = fold(slots.items[i].child, slots.items[i].count, sub);
             m_wide[child].child[i] = sub;
             m_wide[child].count[i] = subRef;
         }
@@ -166,10 +179,25 @@ public:
     }
 
 private:
+    /// Node \p index stays plain: only its inner children's references may change.
+    uint32_t keepPlain(uint32_t index, uint32_t ref, uint32_t &child) {
+        child = index;
+        for (int c = 0; c < 8; ++c) {
+            const uint32_t r = m_nodes[index].count[c];
+            if (!(r & OctreeNode::kInner)) continue;
+            uint32_t sub;
+            const uint32_t subRef = fold(m_nodes[index].child[c], r, sub);
+            m_nodes[index].child[c] = sub;
+            m_nodes[index].count[c] = subRef;
+        }
+        return ref;
+    }
+
     /// The wide node \p w's slots and orders (inner children's references are set by the caller).
-    void writeWide(uint32_t w, const std::vector<Slot> &slots) {
+    void writeWide(uint32_t w, const SlotList &list) {
         OctreeWideNode &node = m_wide[w];
-        const int n = int(slots.size());
+        const Slot *slots = list.items;
+        const int n = int(list.n);
         for (int s = 0; s < OctreeWideNode::kSlots; ++s) {
             const bool used = s < n;
             for (int a = 0; a < 3; ++a) {
@@ -183,7 +211,7 @@ private:
         // is a prefix of another's (cells are the leaves of the opened subtree), so the first
         // three bits that differ decide, at the node where the two paths part.
         int deepest = 0;
-        for (const Slot &s : slots) deepest = std::max(deepest, s.levels);
+        for (int s = 0; s < n; ++s) deepest = std::max(deepest, slots[s].levels);
         for (unsigned signs = 0; signs < 8; ++signs) {
             uint64_t key[OctreeWideNode::kSlots];
             for (int s = 0; s < OctreeWideNode::kSlots; ++s)
