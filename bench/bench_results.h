@@ -72,6 +72,12 @@ struct MeshResult {
     double loadMs = 0.0;
     int width = 0, height = 0, spp = 0, repeats = 0;
     std::string clock = "wall";  ///< what timed the ray sets: "wall" or "cpu" (--cpu-time)
+    /// The machine, without which ratios from two machines cannot be compared: the CPU's
+    /// name, whether it has AVX-512 (Embree picks its kernels by the CPU at run time), and the
+    /// lanes of the octree's kernels (fixed at compile time by NORI_ARCH: 16, 8 or 1).
+    std::string cpu;
+    bool cpuAvx512 = false;
+    int octreeLanes = 1;
     std::string camera;       ///< "framing" (automatic, fov 30) or "scene"
     double rayGenerationMs = 0.0;
     EmbreeResult embree;      ///< default (non-robust) flags: the speed peer

@@ -5,11 +5,13 @@
 #include "oracle_judge.h"
 #include "ray_sets.h"
 #include "ray_workload.h"
+#include "accel/lanes.h"
 #include <nori/object.h>
 #include <tbb/info.h>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
 namespace nori::bench {
@@ -180,6 +182,20 @@ RunResult BenchRunner::runAccel(const std::string &accelName, Accel &accel, cons
     return run;
 }
 
+namespace {
+/// The CPU's model name from /proc/cpuinfo ("unknown" where there is none).
+std::string cpuName() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind("model name", 0) == 0) {
+            const size_t colon = line.find(':');
+            if (colon != std::string::npos && colon + 2 <= line.size()) return line.substr(colon + 2);
+        }
+    return "unknown";
+}
+} // namespace
+
 MeshResult BenchRunner::run(const BenchInput &input) const {
     MeshResult result;
     result.mesh = input.name;
@@ -188,6 +204,9 @@ MeshResult BenchRunner::run(const BenchInput &input) const {
     result.loadMs = input.loadMs;
     result.repeats = m_options.repeats;
     result.clock = m_options.cpuTime ? "cpu" : "wall";
+    result.cpu = cpuName();
+    result.cpuAvx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
+    result.octreeLanes = lanes::kMaxLanes;
     result.notes = m_catalog.skipped();
     std::vector<const Mesh *> meshes = input.meshPointers();
     MeshTable table(meshes);

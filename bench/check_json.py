@@ -62,6 +62,15 @@ def check_mesh(m, where):
     number(m, "load_ms", where, 0)
     if m.get("clock", "wall") not in ("wall", "cpu"):
         fail(where, f"clock {m.get('clock')!r} is neither 'wall' nor 'cpu'")
+    machine = m.get("machine")
+    if not isinstance(machine, dict):
+        fail(where, "missing 'machine' (cpu, cpu_avx512, octree_lanes)")
+    else:
+        string(machine, "cpu", f"{where}.machine")
+        if not isinstance(machine.get("cpu_avx512"), bool):
+            fail(f"{where}.machine", f"cpu_avx512 is {machine.get('cpu_avx512')!r}, expected true or false")
+        if machine.get("octree_lanes") not in (1, 8, 16):
+            fail(f"{where}.machine", f"octree_lanes is {machine.get('octree_lanes')!r}, expected 1, 8 or 16")
     e = m.get("embree")
     if not isinstance(e, dict):
         fail(where, "missing 'embree'")

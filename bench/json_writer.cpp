@@ -80,6 +80,7 @@ Json meshJson(const MeshResult &m) {
     j["triangles"] = m.triangles;
     j["threads"] = m.threads;
     j["clock"] = m.clock;
+    j["machine"] = {{"cpu", m.cpu}, {"cpu_avx512", m.cpuAvx512}, {"octree_lanes", m.octreeLanes}};
     j["load_ms"] = number(m.loadMs);
     j["rays"] = {{"camera", m.camera},       {"width", m.width},   {"height", m.height},
                  {"spp", m.spp},             {"repeats", m.repeats}, {"generation_ms", number(m.rayGenerationMs)},

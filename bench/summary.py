@@ -69,6 +69,15 @@ def row(result, name, floors=False, met=None):
     return "| %s | %s | %s | %s | %s | %s (%s)%s | %s |" % (name, tris, " | ".join(ratios), build, size, mism, own, mark, exact)
 
 
+def machine_line(result):
+    """Where a result was measured (absent from files written before nori-bench recorded it)."""
+    m = result.get("machine")
+    if not m:
+        return "machine not recorded"
+    return "%s: %s, octree kernels %d lanes" % (m["cpu"], "AVX-512 (Embree's kernels too)" if m["cpu_avx512"]
+                                                 else "no AVX-512 (Embree runs AVX2 or narrower)", m["octree_lanes"])
+
+
 def main(argv):
     names = None
     if "--names" in argv:
@@ -90,6 +99,8 @@ def main(argv):
         line = row(result, name, floors, met)
         if line:
             print(line)
+    machines = sorted({machine_line(r) for r in results})
+    print("\n" + "; ".join(machines) + ".")
     if floors:
         print("\nFloors met, of %d rows: " % len(results) + ", ".join("%s %d" % (k, met.get(k, 0)) for k in FLOOR_NAMES))
     print("\nprimary/diffuse/shadow: octree rays/s over Embree default's, interleaved (> 1: faster than Embree); "
