@@ -154,12 +154,10 @@ public:
         const OctreeNode &node;
         const OctreeKept &kept;  ///< its first kept group (ref & OctreeNode::kKeptMask triangles in all)
         const std::vector<OctreeKept> &keptStore;  ///< where kept.next and the later groups point
-        const std::vector<uint32_t> &wideSource;   ///< OctreeAccel::m_wideSource
+        const OctreeAccel &accel;
         /// \brief The index of inner child \p c (node.count[c] & kInner) among the nodes: after
         /// fold(), node.child[c] of a child folded into a wide node is the wide node's index.
-        uint32_t childNode(int c) const {
-            return (node.count[c] & OctreeNode::kWide) ? wideSource[node.child[c]] : node.child[c];
-        }
+        uint32_t childNode(int c) const { return accel.nodeIndexOf(node.child[c], node.count[c]); }
         /// \brief The node's kept groups, in the order the traversals test them.
         std::vector<OctreeKept> keptGroups() const {
             std::vector<OctreeKept> groups;
@@ -175,16 +173,14 @@ public:
     template <typename Visit> void forEachNode(Visit visit) const {
         if (m_nodes.empty()) return;
         // (A wide reference, kWide, leads to the node its wide node was folded from.)
-        auto unfold = [&](uint32_t child, uint32_t ref) {
-            return (ref & OctreeNode::kWide) ? std::pair{m_wideSource[child], ref & ~OctreeNode::kWide} : std::pair{child, ref};
-        };
+        auto unfold = [&](uint32_t child, uint32_t ref) { return std::pair{nodeIndexOf(child, ref), ref & ~OctreeNode::kWide}; };
         std::vector<std::pair<std::pair<uint32_t, uint32_t>, int>> stack{{unfold(m_rootChild, m_rootCount), 0}};
         while (!stack.empty()) {
             auto [indexRef, depth] = stack.back();
             auto [index, ref] = indexRef;
             stack.pop_back();
             const OctreeNode &node = m_nodes[index];
-            visit(NodeView{index, ref, depth, node, m_kept[index], m_kept, m_wideSource});
+            visit(NodeView{index, ref, depth, node, m_kept[index], m_kept, *this});
             for (int c = 0; c < 8; ++c)
                 if (node.count[c] & OctreeNode::kInner) stack.push_back({unfold(node.child[c], node.count[c]), depth + 1});
         }

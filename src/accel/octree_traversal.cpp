@@ -357,10 +357,8 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
                                            near, wideEntry, nearLane)
                               : simd.push(m_nodes[child], patternOf(count), ray.mint, maxt, stackChild + sp,
                                           stackCount + sp, stackT + sp, near, entry, nearLane);
-            // The node of m_nodes this one stands for: where its kept groups start.
-            const uint32_t source = wide ? m_wideSource[child] : child;
 #ifdef NORI_OCTREE_COUNTERS
-            if (g_octreeCounters.nodeVisits) ++(*g_octreeCounters.nodeVisits)[source];
+            if (g_octreeCounters.nodeVisits) ++(*g_octreeCounters.nodeVisits)[nodeIndexOf(child, count)];
             g_octreeCounters.wideNodes += wide;
             ++g_octreeCounters.entered[pushed + 1];
 #endif
@@ -372,7 +370,8 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             // waiting children.
             if (count & OctreeNode::kKeptMask) {
                 const float tc = !descend ? 0.0f : wide ? lane(wideEntry, nearLane) : lane(entry, nearLane);
-                for (uint32_t g = source;; g = m_kept[g].next) {
+                // (A node's first kept group sits at its index among the nodes.)
+                for (uint32_t g = nodeIndexOf(child, count);; g = m_kept[g].next) {
                     const OctreeKept &group = m_kept[g];
                     float tk;
                     if (slab.hit(group, ray.mint, tri.cullLimit(best.t), tk)) {
@@ -437,7 +436,7 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
 #endif
             // The node's own large triangles first (the likeliest occluders), if the ray enters their box.
             if (count & OctreeNode::kKeptMask)
-                for (uint32_t g = wide ? m_wideSource[child] : child;; g = m_kept[g].next) {
+                for (uint32_t g = nodeIndexOf(child, count);; g = m_kept[g].next) {
                     const OctreeKept &group = m_kept[g];
                     float tk;
                     if (slab.hit(group, ray.mint, ray.maxt, tk) && countedList(true, group.count, [&] {
