@@ -221,6 +221,17 @@ inline VMask<L> needsExactT(VMask<L> valid, VFloat<L> t, VFloat<L> err, float oS
     return valid & ~(err <= VFloat<L>(0x1p-19f) * (abs(t) + oScale)) & ~outside;
 }
 
+/// For an any-hit query: the lanes of \p inside (crossing surely inside the triangle) whose
+/// float t lies within [mint, maxt] by more than 4 \p err, the margin needsExactT grants beyond
+/// maxt. Their exact t lies in the range too wherever the estimate holds within that factor, so
+/// the double t (exactPlaneT) would change no decision: a ray leaving a floor toward a light
+/// behind a ceiling is occluded whatever the ceiling's t rounds to.
+template <int L>
+inline VMask<L> surelyInRange(VMask<L> inside, VFloat<L> t, VFloat<L> err, float mint, float maxt) {
+    const VFloat<L> margin = VFloat<L>(4.0f) * err;
+    return inside & (t - margin >= mint) & (t + margin <= maxt);
+}
+
 /// x rounded to float, except that a nonzero x too small for a float keeps its sign (as the
 /// smallest subnormal): only the sign of an edge function (or of t) decides a hit.
 inline float signedFloat(double x) {
@@ -315,7 +326,7 @@ template <int L>
 /// factor 2 of margin) exceeds 2^-19 of the problem's scale (needsExactT), t is recomputed
 /// from the plane equation in double (exactPlaneT): the remedy of computing the
 /// distance from the plane where the edge-based t is ill-conditioned, only where it is.
-template <int L>
+template <int L, bool kAnyHit = false>
 [[gnu::always_inline]] inline Step<L> mollerTrumbore(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt,
                                                      uint32_t skipPrim) {
     using F = VFloat<L>;
@@ -358,6 +369,10 @@ template <int L>
             const F e = max(e1, e2);
             const F bound = F(0x1p-15f) * (F(sc.dInf) * e) * (w + e) * abs(invDet);
             const VMask<L> inside = (u > bound) & (v > bound) & (F(1.0f) - (u + v) > bound);
+            if constexpr (kAnyHit) {
+                const VMask<L> sure = surelyInRange(valid & inside, t, err, r.mint, maxt);
+                if (any(sure)) return {t, u, v, sure};
+            }
             t = exactPlaneT(redo, inside, r, rows, n, i, t, skipPrim);
             known = redo & inside;
         }
@@ -427,7 +442,7 @@ template <int L>
 /// hit distance (a 2000-unit ground seen from 6 units) t is off by more than the distance to the
 /// plane, and a ray leaving the surface re-hits it. Those lanes, and the lanes whose exact
 /// decision overturned the float one, get t from the plane equation in double (exactPlaneT).
-template <int L>
+template <int L, bool kAnyHit = false>
 [[gnu::always_inline]] inline Step<L> watertight(const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, VMask<L> m, float maxt,
                                                  uint32_t skipPrim) {
     using F = VFloat<L>;
@@ -497,6 +512,11 @@ template <int L>
         const F err = F(0x1p-22f) * ((M + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
         const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt) | (valid & exactly);
         if (any(redo)) {
+            // (inside excludes the lanes decided exactly: their t is not the corners'.)
+            if constexpr (kAnyHit) {
+                const VMask<L> sure = surelyInRange(valid & inside, t, err, r.mint, maxt);
+                if (any(sure)) return {t, V * invDet, W * invDet, sure};
+            }
             // Lanes decided exactly with no zero volume cross strictly inside too; those with a
             // zero one cross on an edge, and exactPlaneT's inside test keeps them.
             const VMask<L> strict = inside | (exactly & (U != 0.0f) & (V != 0.0f) & (W != 0.0f));
@@ -508,12 +528,14 @@ template <int L>
     return {t, V * invDet, W * invDet, valid, known};
 }
 
-template <int L>
+/// One step of the chosen kernel. With \p kAnyHit (an occlusion query) the step may stop at
+/// the first lanes surely hit, and then reports only those.
+template <int L, bool kAnyHit = false>
 [[gnu::always_inline]] inline Step<L> testStep(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, float maxt,
                                                uint32_t skipPrim = ~0u) {
     const VMask<L> m = VMask<L>::firstN(n - i);
-    return kind == Intersector::MT ? mollerTrumbore<L>(r, rows, n, i, m, maxt, skipPrim)
-                                   : watertight<L>(r, rows, n, i, m, maxt, skipPrim);
+    return kind == Intersector::MT ? mollerTrumbore<L, kAnyHit>(r, rows, n, i, m, maxt, skipPrim)
+                                   : watertight<L, kAnyHit>(r, rows, n, i, m, maxt, skipPrim);
 }
 
 /// Closest hit over chunk k (triangles 16k .. 16k + 15) in steps of L lanes: the lexicographic
@@ -599,7 +621,7 @@ bool leafOccluded(Intersector kind, const TriangleRay &ray, const float *rows, u
             const uint32_t k = 16 * g + uint32_t(__builtin_ctz(mask));
             NORI_TRIANGLE_COUNT(chunks, 1);
             for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L)
-                if (any(testStep<L>(kind, ray, rows, n, i, maxt).hit)) return true;
+                if (any(testStep<L, true>(kind, ray, rows, n, i, maxt).hit)) return true;
         }
     }
     return false;
