@@ -10,6 +10,7 @@
 #include <nori/objloader.h>
 #include <pcg_random.hpp>
 #include <cstdio>
+#include <exception>
 #include <cstdlib>
 
 using namespace nori;
@@ -28,7 +29,8 @@ double planeDistance(const Mesh &m, uint32_t f, const Point3f &p) {
 }
 } // namespace
 
-int main(int argc, char **argv) {
+namespace {
+int run(int argc, char **argv) {
     if (argc < 2) {
         std::fprintf(stderr, "usage: nori-raydiag SCENE.xml|shape:NAME [spp] [max lines (-1: work per ray, counters build)] [primary]\n");
         return 2;
@@ -127,7 +129,7 @@ int main(int argc, char **argv) {
                 std::printf(" %.2f/%.2f", double(g_octreeCounters.keptBySize[b]) / n, double(g_octreeCounters.keptChunksBySize[b]) / n);
             std::printf("\n");
             // Visits by depth, and by the node's filled children.
-            std::vector<double> byDepth(40, 0.0), byFilled(9, 0.0);
+            std::vector<double> byDepth(40, 0.0), byFilled(OctreeWideNode::kSlots + 1, 0.0);
             octree.forEachNode([&](const OctreeAccel::NodeView &v) {
                 int filled = 0;
                 for (int c = 0; c < 8; ++c) filled += v.node.box[0][c] <= v.node.box[0][8 + c];
@@ -228,4 +230,14 @@ int main(int argc, char **argv) {
                 "octree %zu/%zu, embree robust %zu/%zu, embree default %zu/%zu\n",
                 disputed, right[0], wrong[0], right[1], wrong[1], right[2], wrong[2]);
     return 0;
+}
+} // namespace
+
+int main(int argc, char **argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception &e) {  // a bad scene file or mesh: one message, no abort
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
 }

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <ctime>
 #include <cstdio>
+#include <exception>
 #include <cstdlib>
 #include <string>
 
@@ -26,7 +27,8 @@ double cpuNs() {
 }
 } // namespace
 
-int main(int argc, char **argv) {
+namespace {
+int run(int argc, char **argv) {
     if (argc < 3) {
         std::fprintf(stderr, "usage: nori-raytime SCENE.xml primary|diffuse|shadow|build [repeats] [spp]\n");
         return 2;
@@ -117,4 +119,14 @@ int main(int argc, char **argv) {
     if (argc > 5)
         for (const AccelStat &st : octree.statistics()) std::printf("%s %g\n", st.name.c_str(), st.value);
     return 0;
+}
+} // namespace
+
+int main(int argc, char **argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception &e) {  // a bad scene file or mesh: one message, no abort
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
 }
