@@ -18,7 +18,9 @@
 ///     use it only where a NaN argument cannot change what is decided;
 ///   - max(f, g) = f > g ? f : g and min(f, g) = f < g ? f : g lane by lane (the x86 maxps/minps
 ///     rule: the second operand on NaN or equality, so a NaN in f never wins);
-///   - select(m, f, g), reduceMin(m, f) (+inf when m is empty), lane(f, j);
+///   - select(m, f, g), reduceMin(m, f) (+inf when m is empty), lane(f, j); withLane(f, j, x)
+///     is f with lane j set to x (in registers: scalar stores then a vector load of the same
+///     bytes would stall on store forwarding);
 ///   - masks: m & n, m | n, ~m (within the L lanes), any(m), bits(m) (bit j = lane j),
 ///     M::firstN(n) (lanes 0 .. n-1; all when n >= L);
 ///   - U: U(x), U::loadu(p), u.storeu(p), u ^ v, lane(u, j); permute(f or u, idx) (lane j gets
@@ -97,6 +99,7 @@ template <> struct VFloat<1> {
     friend VFloat select(VMask<1> m, VFloat a, VFloat b) { return m.b ? a : b; }
     friend float reduceMin(VMask<1> m, VFloat a) { return m.b ? a.f : Infinity; }
     friend float lane(VFloat a, int) { return a.f; }
+    friend VFloat withLane(VFloat, int, float x) { return x; }
 };
 
 template <> struct VUint<1> {
@@ -195,6 +198,14 @@ template <> struct VFloat<8> {
         h = _mm_min_ps(h, _mm_movehl_ps(h, h));
         h = _mm_min_ss(h, _mm_shuffle_ps(h, h, 1));
         return _mm_cvtss_f32(h);
+    }
+    friend VFloat withLane(VFloat a, int j, float x) {
+#if NORI_LANES_AVX512
+        return _mm256_mask_broadcastss_ps(a.v, __mmask8(1u << j), _mm_set_ss(x));
+#else
+        const __m256i at = _mm256_cmpeq_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(j));
+        return _mm256_blendv_ps(a.v, _mm256_set1_ps(x), _mm256_castsi256_ps(at));
+#endif
     }
     friend float lane(VFloat a, int j) {
         alignas(32) float x[8];
@@ -324,6 +335,9 @@ template <> struct VFloat<16> {
     friend VFloat select(VMask<16> m, VFloat a, VFloat b) { return _mm512_mask_blend_ps(m.k, b.v, a.v); }
     // A blend, not the masked reduction: GCC 12's masked form trips -Wuninitialized.
     friend float reduceMin(VMask<16> m, VFloat a) { return _mm512_reduce_min_ps(select(m, a, VFloat(Infinity)).v); }
+    friend VFloat withLane(VFloat a, int j, float x) {
+        return _mm512_mask_broadcastss_ps(a.v, __mmask16(1u << j), _mm_set_ss(x));
+    }
     friend float lane(VFloat a, int j) {
         alignas(64) float x[16];
         _mm512_store_ps(x, a.v);

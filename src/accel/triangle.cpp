@@ -255,15 +255,14 @@ template <int L>
                                         uint32_t n, uint32_t i, VFloat<L> t, uint32_t skipPrim) {
     // Not [[gnu::cold]]: GCC optimizes cold functions for size, which turned the nine corner
     // loads into loops through the stack (twice the instructions of this straight-line code).
-    float out[L];
-    t.storeu(out);
+    VFloat<L> out = t;
     NORI_TRIANGLE_COUNT(exactT, __builtin_popcount(bits(redo)));
     const size_t s = n;  // row stride
     for (unsigned b = bits(redo); b; b &= b - 1) {
         const int j = __builtin_ctz(b);
         const float *c = rows + i + uint32_t(j);  // corner coordinates of lane j: c[row * s]
         if (primAt(rows, n, i + uint32_t(j)) == skipPrim) {  // already the closest hit: no news
-            out[j] = std::numeric_limits<float>::quiet_NaN();
+            out = withLane(out, j, std::numeric_limits<float>::quiet_NaN());
             continue;
         }
         if (bits(inside) >> j & 1u) {
@@ -277,7 +276,7 @@ template <int L>
                           : c[2 * s] == c[5 * s] && c[2 * s] == c[8 * s] ? 2
                                                                          : -1;
             if (a >= 0 && r.d[a] != 0.0f) {
-                out[j] = signedFloat((double(c[size_t(a) * s]) - double(r.o[a])) / double(r.d[a]));
+                out = withLane(out, j, signedFloat((double(c[size_t(a) * s]) - double(r.o[a])) / double(r.d[a])));
                 continue;
             }
         }
@@ -292,7 +291,7 @@ template <int L>
         if (den == 0.0) continue;  // the ray lies in the plane: the float t stays (see below)
         const double te = num / den;
         if (bits(inside) >> j & 1u) {
-            out[j] = signedFloat(te);
+            out = withLane(out, j, signedFloat(te));
             continue;
         }
         // The kernel's edge test let the lane through: mt's float test (kept), or the watertight
@@ -309,9 +308,9 @@ template <int L>
         const double nn = nx * nx + ny * ny + nz * nz, tol = 0x1p-24 * nn;
         const double s1 = (x[1] * e2[2] - x[2] * e2[1]) * nx + (x[2] * e2[0] - x[0] * e2[2]) * ny + (x[0] * e2[1] - x[1] * e2[0]) * nz;
         const double s2 = (e1[1] * x[2] - e1[2] * x[1]) * nx + (e1[2] * x[0] - e1[0] * x[2]) * ny + (e1[0] * x[1] - e1[1] * x[0]) * nz;
-        if (s1 >= -tol && s2 >= -tol && nn - s1 - s2 >= -tol) out[j] = signedFloat(te);
+        if (s1 >= -tol && s2 >= -tol && nn - s1 - s2 >= -tol) out = withLane(out, j, signedFloat(te));
     }
-    return VFloat<L>::loadu(out);
+    return out;
 }
 
 /// Möller & Trumbore 1997: Cramer's rule on [-d, e1, e2] (t, u, v) = o - p0, with the edges
