@@ -56,7 +56,9 @@ static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
 /// from two or more levels of the octree below one node, tested in one 16-lane slab test
 /// instead of a chain of 8-child tests (a wide BVH node's idea, Wald et al. 2008, "Getting rid
 /// of packets", applied to an octree's cells). The cells are the leaves of the subtree the
-/// fold opened, so their boxes are the octree's own child boxes, bit for bit. 640 bytes.
+/// fold opened, so their boxes are the octree's own child boxes, bit for bit; a node it opened
+/// that kept triangles of its own brings each kept group as one more slot (a list of triangles,
+/// like a leaf, in the group's box), in front of that node's cells. 640 bytes.
 struct alignas(64) OctreeWideNode {
     static constexpr int kSlots = 16;
     /// box[axis][s] is the lower bound of slot s, box[axis][kSlots + s] its upper bound; an unused

@@ -5,7 +5,9 @@
 /// the other costs a node test each; folding opens such children into their parent, so that
 /// one 16-lane test (OctreeWideNode) decides the cells of two or more levels at once.
 /// The cells, boxes, leaves and kept lists are the octree's own: only the way the traversal
-/// reaches them changes, and the answers stay the same bit for bit (tests/accel/test_octree_fold.cpp).
+/// reaches them changes (the kept groups of an opened node become slots of the wide node, each
+/// a triangle list in its own box, as the plain traversal tests them: by entry distance), and
+/// the answers stay the same bit for bit (tests/accel/test_octree_fold.cpp).
 /// Folding works in place: a plain node that stays refers to a folded child with kWide; the
 /// nodes opened into wide nodes stay where they are, for forEachNode and the other traversals.
 #include "octree.h"
@@ -61,10 +63,9 @@ struct Slot {
     /// xor the octants along its path from the folded node, three bits per level.
     uint64_t key[8];
     int levels;  ///< how many levels below the folded node the cell's parent lies
+    bool kept;   ///< a kept group of an opened node (a list of triangles, like a leaf)
 
-    bool openable() const {
-        return (count & OctreeNode::kInner) && !(count & OctreeNode::kKeptMask) && levels < kMaxFoldLevels;
-    }
+    bool openable() const { return (count & OctreeNode::kInner) && levels < kMaxFoldLevels; }
 };
 
 uint32_t patternOf(uint32_t ref) { return (ref >> OctreeNode::kPatternShift) & 63u; }
@@ -87,8 +88,35 @@ struct SlotList {
     }
 };
 
-/// The filled children of \p node (reached through \p ref), as slots one level below \p parent's.
-void appendChildren(const OctreeNode &node, uint32_t ref, const Slot *parent, SlotList &out) {
+/// The kept groups of node \p index reached through \p ref (none without kKeptMask).
+int keptGroups(const std::vector<OctreeKept> &kept, uint32_t index, uint32_t ref) {
+    if (!(ref & OctreeNode::kKeptMask)) return 0;
+    int n = 1;
+    for (uint32_t g = index; kept[g].next; g = kept[g].next) ++n;
+    return n;
+}
+
+/// The cells of node \p index of \p nodes (reached through \p ref) as slots one level below
+/// \p parent's: its kept groups, each a list of triangles like a leaf, in front of all its
+/// children (the order the plain traversal tests them in when their boxes come first), then
+/// its filled children.
+void appendChildren(const std::vector<OctreeNode> &nodes, const std::vector<OctreeKept> &kept, uint32_t index,
+                    uint32_t ref, const Slot *parent, SlotList &out) {
+    const OctreeNode &node = nodes[index];
+    if (ref & OctreeNode::kKeptMask)
+        for (uint32_t g = index;; g = kept[g].next) {
+            Slot &s = out.items[out.n++];
+            s.child = kept[g].offset;
+            s.count = kept[g].count;
+            for (int a = 0; a < 3; ++a) {
+                s.lo[a] = kept[g].lo[a];
+                s.hi[a] = kept[g].hi[a];
+            }
+            s.levels = parent ? parent->levels + 1 : 0;
+            s.kept = true;
+            for (unsigned signs = 0; signs < 8; ++signs) s.key[signs] = parent ? parent->key[signs] << 3 : 0u;
+            if (!kept[g].next) break;
+        }
     const uint8_t *octant = kOctants.octant[patternOf(ref)];
     for (int c = 0; c < 8; ++c) {
         if (isEmpty(node, c)) continue;
@@ -100,6 +128,7 @@ void appendChildren(const OctreeNode &node, uint32_t ref, const Slot *parent, Sl
             s.hi[a] = node.box[a][8 + c];
         }
         s.levels = parent ? parent->levels + 1 : 0;
+        s.kept = false;
         for (unsigned signs = 0; signs < 8; ++signs)
             s.key[signs] = (parent ? parent->key[signs] << 3 : 0u) | (uint32_t(c) ^ octant[signs]);
     }
@@ -111,8 +140,9 @@ void appendChildren(const OctreeNode &node, uint32_t ref, const Slot *parent, Sl
 /// get kWide references to children that became wide nodes.
 class OctreeFolder {
 public:
-    OctreeFolder(std::vector<OctreeNode> &nodes, std::vector<OctreeWideNode> &wide, std::vector<uint32_t> &source)
-        : m_nodes(nodes), m_wide(wide), m_source(source) {}
+    OctreeFolder(std::vector<OctreeNode> &nodes, const std::vector<OctreeKept> &kept, std::vector<OctreeWideNode> &wide,
+                 std::vector<uint32_t> &source)
+        : m_nodes(nodes), m_kept(kept), m_wide(wide), m_source(source) {}
 
     size_t opened = 0;  ///< nodes opened into wide nodes
 
@@ -123,11 +153,11 @@ public:
         bool openable = false;
         for (int c = 0; c < 8; ++c) {
             const uint32_t r = m_nodes[index].count[c];
-            openable |= (r & OctreeNode::kInner) && !(r & OctreeNode::kKeptMask);
+            openable |= bool(r & OctreeNode::kInner);
         }
         if (!openable) return keepPlain(index, ref, child);
         SlotList slots;
-        appendChildren(m_nodes[index], ref, nullptr, slots);
+        appendChildren(m_nodes, m_kept, index, ref & ~OctreeNode::kKeptMask, nullptr, slots);  // (its own kept groups stay its own)
 
         // Open the largest cells first, while they fit in sixteen slots.
         float lo[3] = {Infinity, Infinity, Infinity}, hi[3] = {-Infinity, -Infinity, -Infinity};
@@ -146,7 +176,9 @@ public:
             for (size_t i = 0; i < slots.n; ++i) {
                 const Slot &s = slots.items[i];
                 if (!s.openable()) continue;
-                if (slots.n - 1 + size_t(filledChildren(m_nodes[s.child])) > size_t(OctreeWideNode::kSlots)) continue;
+                if (slots.n - 1 + size_t(filledChildren(m_nodes[s.child]) + keptGroups(m_kept, s.child, s.count)) >
+                    size_t(OctreeWideNode::kSlots))
+                    continue;
                 const float a = surfaceArea(s.lo, s.hi);
                 if (a > bestArea) {
                     bestArea = a;
@@ -156,7 +188,7 @@ public:
             if (best < 0) break;
             const Slot s = slots.items[size_t(best)];
             slots.erase(size_t(best));
-            appendChildren(m_nodes[s.child], s.count, &s, slots);
+            appendChildren(m_nodes, m_kept, s.child, s.count, &s, slots);
             gain += area > 0.0f ? bestArea / area : 1.0f;
             ++opens;
         }
@@ -219,12 +251,18 @@ private:
             uint8_t order[OctreeWideNode::kSlots];
             std::iota(order, order + OctreeWideNode::kSlots, uint8_t(0));
             // Back to front: the largest key (the farthest cell; unused slots before it) in lane 0.
-            std::sort(order, order + OctreeWideNode::kSlots, [&](uint8_t x, uint8_t y) { return key[x] > key[y]; });
+            // A kept group shares its key with the front cell of its node: it comes just before it,
+            // and a node's groups in their own order.
+            std::sort(order, order + OctreeWideNode::kSlots, [&](uint8_t x, uint8_t y) {
+                const bool keptX = x < n && slots[x].kept, keptY = y < n && slots[y].kept;
+                return key[x] != key[y] ? key[x] > key[y] : keptX != keptY ? keptX < keptY : x > y;
+            });
             std::copy(order, order + OctreeWideNode::kSlots, node.order[signs]);
         }
     }
 
     std::vector<OctreeNode> &m_nodes;
+    const std::vector<OctreeKept> &m_kept;
     std::vector<OctreeWideNode> &m_wide;
     std::vector<uint32_t> &m_source;
 };
@@ -234,7 +272,7 @@ void OctreeAccel::fold() {
     std::vector<uint32_t>().swap(m_wideSource);
     m_rootChild = 0;
     if (!m_fold || m_traversal != Traversal::Simd || m_nodes.empty()) return;
-    OctreeFolder folder(m_nodes, m_wide, m_wideSource);
+    OctreeFolder folder(m_nodes, m_kept, m_wide, m_wideSource);
     m_rootCount = folder.fold(0, m_rootCount, m_rootChild);
     m_wide.shrink_to_fit();
     m_wideSource.shrink_to_fit();

@@ -1,6 +1,6 @@
 /// \file test_octree_fold.cpp
 /// \brief The folded tree of the simd traversals (OctreeAccel::fold): it must reach every leaf
-/// and kept list of the octree exactly once, its wide nodes' orders must be permutations of
+/// and kept group of the octree exactly once (an opened node's groups as slots of its wide node), its wide nodes' orders must be permutations of
 /// their slots that list the cells in the unfolded tree's front-to-back order, and its answers must be the unfolded tree's bit for
 /// bit (same cells, same leaves, same culling: only the number of node tests changes).
 #include <gtest/gtest.h>
@@ -35,31 +35,52 @@ gen::GeneratedScene smallScene(const char *shape) {
     return gen::generateScene(shape, params);
 }
 
-/// Leaves (offset, count) and kept starts reachable through the unfolded tree.
+/// Leaves and kept groups (each named by its triangle list: offset, count) reachable through a tree.
 struct Reached {
-    std::map<std::pair<uint32_t, uint32_t>, int> leaves;
-    std::map<uint32_t, int> kept;  ///< node of m_nodes whose kept groups are tested -> times
+    std::map<std::pair<uint32_t, uint32_t>, int> leaves, kept;
     size_t nodes = 0;
 };
+
+using ListName = std::pair<uint32_t, uint32_t>;  ///< a triangle list: offset, count
+
+/// Every node's kept groups (index among the nodes -> its groups in their chain's order).
+std::map<uint32_t, std::vector<ListName>> keptByNode(const OctreeAccel &octree) {
+    std::map<uint32_t, std::vector<ListName>> byNode;
+    octree.forEachNode([&](const OctreeAccel::NodeView &v) {
+        for (const OctreeKept &g : v.keptGroups()) byNode[v.index].push_back({g.offset, g.count});
+    });
+    return byNode;
+}
+
+std::vector<ListName> keptGroupsOf(const std::map<uint32_t, std::vector<ListName>> &byNode, uint32_t index) {
+    auto it = byNode.find(index);
+    return it == byNode.end() ? std::vector<ListName>{} : it->second;
+}
 
 Reached reachedUnfolded(const OctreeAccel &octree) {
     Reached r;
     octree.forEachNode([&](const OctreeAccel::NodeView &v) {
         ++r.nodes;
-        if (v.ref & OctreeNode::kKeptMask) ++r.kept[v.index];
+        for (const OctreeKept &g : v.keptGroups()) ++r.kept[{g.offset, g.count}];
         for (int c = 0; c < 8; ++c)
             if (v.node.count[c] && !(v.node.count[c] & OctreeNode::kInner)) ++r.leaves[{v.node.child[c], v.node.count[c]}];
     });
     return r;
 }
 
-Reached reachedFolded(const OctreeAccel &octree) {
+/// The same through the folded tree: a wide node's own kept groups, and the groups of the nodes
+/// it opened, which became slots (told from leaves by \p keptLists, the unfolded tree's groups).
+Reached reachedFolded(const OctreeAccel &octree, const Reached &unfolded) {
+    const auto byNode = keptByNode(octree);
     Reached r;
     octree.forEachFoldedNode([&](const OctreeAccel::FoldedView &v) {
         ++r.nodes;
-        if (v.ref & OctreeNode::kKeptMask) ++r.kept[v.source];
-        for (int s = 0; s < v.slots; ++s)
-            if (v.count[s] && !(v.count[s] & OctreeNode::kInner)) ++r.leaves[{v.child[s], v.count[s]}];
+        for (const auto &g : keptGroupsOf(byNode, v.source)) ++r.kept[g];
+        for (int s = 0; s < v.slots; ++s) {
+            if (!v.count[s] || (v.count[s] & OctreeNode::kInner)) continue;
+            const ListName list{v.child[s], v.count[s]};
+            ++(unfolded.kept.count(list) ? r.kept : r.leaves)[list];
+        }
     });
     return r;
 }
@@ -67,16 +88,23 @@ Reached reachedFolded(const OctreeAccel &octree) {
 } // namespace
 
 TEST(OctreeFold, ReachesEveryLeafAndKeptListOnce) {
-    size_t foldedShapes = 0;
+    size_t foldedShapes = 0, keptSlots = 0;
     for (const char *shape : kShapes) {
         gen::GeneratedScene g = smallScene(shape);
         Mesh mesh(std::move(g.mesh), shape);
         auto accel = buildOctree(mesh, true);
         const OctreeAccel &octree = asOctree(*accel);
-        const Reached unfolded = reachedUnfolded(octree), folded = reachedFolded(octree);
+        const Reached unfolded = reachedUnfolded(octree), folded = reachedFolded(octree, unfolded);
         EXPECT_EQ(folded.leaves, unfolded.leaves) << shape;
         EXPECT_EQ(folded.kept, unfolded.kept) << shape;
         for (const auto &[leaf, times] : folded.leaves) EXPECT_EQ(times, 1) << shape;
+        for (const auto &[group, times] : folded.kept) EXPECT_EQ(times, 1) << shape;
+        keptSlots += folded.kept.size() - [&] {
+            size_t own = 0;  // the groups wide and plain nodes test themselves
+            const auto byNode = keptByNode(octree);
+            octree.forEachFoldedNode([&](const OctreeAccel::FoldedView &v) { own += keptGroupsOf(byNode, v.source).size(); });
+            return own;
+        }();
         if (octree.wideNodes()) {
             ++foldedShapes;
             EXPECT_LT(folded.nodes, unfolded.nodes) << shape;
@@ -90,6 +118,7 @@ TEST(OctreeFold, ReachesEveryLeafAndKeptListOnce) {
     // Not every tree has cells worth folding (thin grass blades fill few of a node's cells),
     // but most of these do: else the checks above would prove nothing.
     EXPECT_GE(foldedShapes, 3u);
+    EXPECT_GT(keptSlots, 0u) << "no opened node had kept groups: their slots went untested";
 }
 
 TEST(OctreeFold, WideOrdersArePermutations) {
@@ -162,6 +191,7 @@ TEST(OctreeFold, WideOrdersAreTheUnfoldedFrontToBackOrder) {
         auto accel = buildOctree(mesh, true);
         const OctreeAccel &octree = asOctree(*accel);
         std::map<uint32_t, std::pair<const OctreeNode *, uint32_t>> nodes;  // index -> node, its reference
+        const auto byNode = keptByNode(octree);
         octree.forEachNode([&](const OctreeAccel::NodeView &v) { nodes[v.index] = {&v.node, v.ref}; });
         octree.forEachFoldedNode([&](const OctreeAccel::FoldedView &v) {
             if (!v.wide) return;
@@ -180,6 +210,12 @@ TEST(OctreeFold, WideOrdersAreTheUnfoldedFrontToBackOrder) {
                     const OctreeNode::Pattern p = OctreeNode::Pattern::fromCode((ref >> OctreeNode::kPatternShift) & 63u);
                     uint32_t octant = 0;
                     for (int l = 0; l < 3; ++l) octant |= ((signs >> p.axis[l]) & 1u) << (2 - l);
+                    // An opened node's kept groups come before its cells (the wide node's own stay its own).
+                    if (index != v.source)
+                        for (const auto &g : keptGroupsOf(byNode, index)) {
+                            if (slotOf.count(g)) expected.push_back(slotOf.at(g));
+                            else ADD_FAILURE() << shape << ": a kept group of an opened node is no slot of its wide node";
+                        }
                     for (uint32_t j = 0; j < 8; ++j) {
                         const uint32_t c = j ^ octant;
                         if (!node->count[c]) continue;
