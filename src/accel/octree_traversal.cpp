@@ -196,7 +196,7 @@ struct CellRay {
 
     /// The cells (boxes \p box, children and counts as in OctreeNode) that the ray enters within
     /// [mint, maxt], visited back to front in lanes as \p order says: the nearest goes to
-    /// \p near (child and count), the others onto the stack, farthest first, with their entry
+    /// \p nearChild and \p nearCount, the others onto the stack, farthest first, with their entry
     /// distances; \p entry holds the entry distances of the last block tested, the nearest
     /// cell's in lane \p nearLane. Returns how many were pushed, or -1 when the ray enters no
     /// cell. Handing the nearest cell over in registers spares the traversal a store and an
@@ -206,7 +206,8 @@ struct CellRay {
     /// store the waiting cells' entry distances.
     template <bool kEntries, typename Order>
     int push(const float (&box)[3][2 * S], const uint32_t *cellChild, const uint32_t *cellCount, Order order, float mint,
-             float maxt, uint32_t *child, uint32_t *count, float *tnear, uint32_t near[2], F &entry, int &nearLane) const {
+             float maxt, uint32_t *child, uint32_t *count, float *tnear, uint32_t &nearChild, uint32_t &nearCount, F &entry,
+             int &nearLane) const {
         // The slabs of L cells from \p first in the node's own order: entry and exit distances.
         // The box loads and the arithmetic on them need only the node's address, not the
         // order (a chain of its own), so the two run side by side.
@@ -234,8 +235,8 @@ struct CellRay {
             if (hit == 0) return -1;
             const int top = 31 - __builtin_clz(hit);
             const uint32_t nearest = order.slot(top);
-            near[0] = cellChild[nearest];
-            near[1] = cellCount[nearest];
+            nearChild = cellChild[nearest];
+            nearCount = cellCount[nearest];
             entry = t0;
             nearLane = top;
             hit ^= 1u << top;
@@ -270,8 +271,8 @@ struct CellRay {
             }
             // The last one pushed is the nearest.
             --k;
-            near[0] = child[k];
-            near[1] = count[k];
+            nearChild = child[k];
+            nearCount = count[k];
             entry = F(tnear[k]);
             nearLane = 0;
             return k;
@@ -281,18 +282,18 @@ struct CellRay {
     /// An OctreeNode's children, reached through a reference with pattern \p code.
     template <bool kEntries = true>
     int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
-             float *tnear, uint32_t near[2], F &entry, int &nearLane) const {
+             float *tnear, uint32_t &nearChild, uint32_t &nearCount, F &entry, int &nearLane) const {
         static_assert(S == 8);
         return push<kEntries>(node.box, node.child, node.count, OctantOrder<L>{SlabRay::kOctants[code][signs]}, mint, maxt,
-                              child, count, tnear, near, entry, nearLane);
+                              child, count, tnear, nearChild, nearCount, entry, nearLane);
     }
     /// A wide node's cells.
     template <bool kEntries = true>
     int push(const OctreeWideNode &node, float mint, float maxt, uint32_t *child, uint32_t *count, float *tnear,
-             uint32_t near[2], F &entry, int &nearLane) const {
+             uint32_t &nearChild, uint32_t &nearCount, F &entry, int &nearLane) const {
         static_assert(S == OctreeWideNode::kSlots);
         return push<kEntries>(node.box, node.child, node.count, TableOrder<L>{node.order[signs]}, mint, maxt, child, count,
-                              tnear, near, entry, nearLane);
+                              tnear, nearChild, nearCount, entry, nearLane);
     }
 };
 using SimdRay = CellRay<kNodeLanes, 8>;
@@ -346,7 +347,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     for (;;) {
         if (count & OctreeNode::kInner) {
             NORI_OCTREE_COUNT(nodes, 1);
-            uint32_t near[2];
+            uint32_t nearChild, nearCount;
             // Entry distances, the nearest child's in lane nearLane (read where kept groups need it).
             SimdRay::F entry;
             WideRay::F wideEntry;
@@ -354,9 +355,9 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             const bool wide = count & OctreeNode::kWide;
             const float maxt = tri.cullLimit(best.t);
             int pushed = wide ? wide_.push(m_wide[child], ray.mint, maxt, stackChild + sp, stackCount + sp, stackT + sp,
-                                           near, wideEntry, nearLane)
+                                           nearChild, nearCount, wideEntry, nearLane)
                               : simd.push(m_nodes[child], patternOf(count), ray.mint, maxt, stackChild + sp,
-                                          stackCount + sp, stackT + sp, near, entry, nearLane);
+                                          stackCount + sp, stackT + sp, nearChild, nearCount, entry, nearLane);
 #ifdef NORI_OCTREE_COUNTERS
             if (g_octreeCounters.nodeVisits) ++(*g_octreeCounters.nodeVisits)[nodeIndexOf(child, count)];
             g_octreeCounters.wideNodes += wide;
@@ -397,8 +398,8 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             }
             sp += pushed;
             if (descend) {  // descend into the nearest child at once
-                child = near[0];
-                count = near[1];
+                child = nearChild;
+                count = nearCount;
                 continue;
             }
         } else {
@@ -445,19 +446,19 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
                         return true;
                     if (!group.next) break;
                 }
-            uint32_t near[2];
+            uint32_t nearChild, nearCount;
             SimdRay::F entry;
             WideRay::F wideEntry;
             int nearLane;
             // (No entry distances: an any-hit query culls nothing.)
             int pushed = wide ? wide_.push<false>(m_wide[child], ray.mint, ray.maxt, stackChild + sp, stackCount + sp,
-                                                  stackT + sp, near, wideEntry, nearLane)
+                                                  stackT + sp, nearChild, nearCount, wideEntry, nearLane)
                               : simd.push<false>(m_nodes[child], patternOf(count), ray.mint, ray.maxt, stackChild + sp,
-                                                 stackCount + sp, stackT + sp, near, entry, nearLane);
+                                                 stackCount + sp, stackT + sp, nearChild, nearCount, entry, nearLane);
             if (pushed >= 0) {
                 sp += pushed;
-                child = near[0];
-                count = near[1];
+                child = nearChild;
+                count = nearCount;
                 continue;
             }
         } else {
