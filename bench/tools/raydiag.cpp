@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <exception>
 #include <cstdlib>
+#include <tuple>
+#include <algorithm>
 
 using namespace nori;
 
@@ -32,7 +34,8 @@ double planeDistance(const Mesh &m, uint32_t f, const Point3f &p) {
 namespace {
 int run(int argc, char **argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: nori-raydiag SCENE.xml|shape:NAME [spp] [max lines (-1: work per ray, counters build)] [primary]\n");
+        std::fprintf(stderr, "usage: nori-raydiag SCENE.xml|shape:NAME [spp] [max lines (-1: work per ray, counters build)] [primary]\n"
+                     "       nori-raydiag SCENE.xml|shape:NAME --leaves   (the largest leaves)\n");
         return 2;
     }
     std::string input = argv[1];
@@ -62,6 +65,26 @@ int run(int argc, char **argv) {
     for (const Mesh *m : meshes) octree.addMesh(m);
     octree.build();
 
+    if (argc >= 3 && std::string(argv[2]) == "--leaves") {
+        // The largest leaves: triangles, depth, box extents (the scene's in the first line).
+        std::vector<std::tuple<uint32_t, int, Vector3f>> leaves;
+        octree.forEachNode([&](const OctreeAccel::NodeView &v) {
+            for (int c = 0; c < 8; ++c) {
+                const uint32_t n = v.node.count[c];
+                if (!n || (n & OctreeNode::kInner)) continue;
+                leaves.emplace_back(n, v.depth + 1,
+                                    Vector3f(v.node.box[0][8 + c] - v.node.box[0][c], v.node.box[1][8 + c] - v.node.box[1][c],
+                                             v.node.box[2][8 + c] - v.node.box[2][c]));
+            }
+        });
+        std::sort(leaves.begin(), leaves.end(), [](const auto &a, const auto &b) { return std::get<0>(a) > std::get<0>(b); });
+        const Vector3f e = table.bbox().extents();
+        std::printf("scene extents %g %g %g, %zu leaves\n", e.x(), e.y(), e.z(), leaves.size());
+        for (size_t i = 0; i < std::min<size_t>(leaves.size(), 15); ++i)
+            std::printf("%u triangles, depth %d, box %g %g %g\n", std::get<0>(leaves[i]), std::get<1>(leaves[i]),
+                        std::get<2>(leaves[i]).x(), std::get<2>(leaves[i]).y(), std::get<2>(leaves[i]).z());
+        return 0;
+    }
     if (argc >= 9 && std::string(argv[2]) == "--probe") {
         // One ray given as hex floats: every intersector's answer and the exact t on each plane hit.
         Ray3f ray(Point3f(std::strtof(argv[3], nullptr), std::strtof(argv[4], nullptr), std::strtof(argv[5], nullptr)),
