@@ -2,6 +2,7 @@
 /// \brief nori-raydiag: the diffuse rays of a bench case that the octree and Embree robust
 /// answer differently, one line each, with the surface each ray leaves.
 #include "accel/octree.h"
+#include "tool_main.h"
 #include <embree_oracle.h>
 #include <oracle_judge.h>
 #include <ray_sets.h>
@@ -10,7 +11,6 @@
 #include <nori/objloader.h>
 #include <pcg_random.hpp>
 #include <cstdio>
-#include <exception>
 #include <cstdlib>
 #include <tuple>
 #include <algorithm>
@@ -256,11 +256,4 @@ int run(int argc, char **argv) {
 }
 } // namespace
 
-int main(int argc, char **argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception &e) {  // a bad scene file or mesh: one message, no abort
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
-    }
-}
+int main(int argc, char **argv) { return nori::bench::toolMain(argc, argv, run); }

@@ -4,6 +4,7 @@
 /// Environment: NORI_LEAFSIZE=N sets leafSize; NORI_AB=PROP times the octree with the boolean
 /// property PROP on against off, side by side in one run, and prints the ratio.
 #include "accel/octree.h"
+#include "tool_main.h"
 #include <ray_sets.h>
 #include <scene_geometry.h>
 #include <nori/scene.h>
@@ -12,7 +13,6 @@
 #include <chrono>
 #include <ctime>
 #include <cstdio>
-#include <exception>
 #include <cstdlib>
 #include <string>
 
@@ -122,11 +122,4 @@ int run(int argc, char **argv) {
 }
 } // namespace
 
-int main(int argc, char **argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception &e) {  // a bad scene file or mesh: one message, no abort
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
-    }
-}
+int main(int argc, char **argv) { return nori::bench::toolMain(argc, argv, run); }
