@@ -553,13 +553,21 @@ bool chunkIntersect(Intersector kind, const TriangleRay &ray, const float *rows,
     for (uint32_t i = 16 * k; i < end; i += L) {
         Step<L> s = testStep<L>(kind, ray, rows, n, i, best.t, best.prim);
         if (!any(s.hit)) continue;
-        const float tmin = reduceMin(s.hit, s.t);
+        const unsigned hits = bits(s.hit);
+        float tmin;
         int winner = -1;
         uint32_t prim = ~0u;
-        for (unsigned b = bits(s.hit & (s.t == tmin)); b; b &= b - 1) {
-            const int j = __builtin_ctz(b);
-            const uint32_t p = primAt(rows, n, i + uint32_t(j));
-            if (p < prim) prim = p, winner = j;
+        if (!(hits & (hits - 1))) {  // one lane (most steps with a hit): no reduction
+            winner = __builtin_ctz(hits);
+            tmin = lane(s.t, winner);
+            prim = primAt(rows, n, i + uint32_t(winner));
+        } else {
+            tmin = reduceMin(s.hit, s.t);
+            for (unsigned b = bits(s.hit & (s.t == tmin)); b; b &= b - 1) {
+                const int j = __builtin_ctz(b);
+                const uint32_t p = primAt(rows, n, i + uint32_t(j));
+                if (p < prim) prim = p, winner = j;
+            }
         }
         if (tmin < best.t || (tmin == best.t && prim < best.prim)) {
             best = Hit{tmin, lane(s.u, winner), lane(s.v, winner), prim};
