@@ -537,16 +537,24 @@ template <int L, bool kAnyHit = false>
                                    : watertight<L, kAnyHit>(r, rows, n, i, m, maxt, skipPrim);
 }
 
+/// Whether chunk k of a leaf of n triangles (a small leaf or kept list, the tail of a leaf)
+/// holds at most eight: in a 16-lane build it takes one 8-lane step instead, half the
+/// micro-operations of a 16-lane one, with the same answers bit for bit.
+template <int L>
+inline bool narrowChunk(uint32_t n, uint32_t k) {
+#if NORI_LANES_AVX2
+    if constexpr (L > 8) return std::min(n, 16 * k + 16) - 16 * k <= 8;
+#endif
+    (void)n, (void)k;
+    return false;
+}
+
 /// Closest hit over chunk k (triangles 16k .. 16k + 15) in steps of L lanes: the lexicographic
 /// minimum of (t, prim), so ties resolve the same way at every width.
 template <int L>
 bool chunkIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k, Hit &best) {
-#if NORI_LANES_AVX2
-    // A chunk of at most eight triangles (a small leaf or kept list, the tail of a leaf) in one
-    // 8-lane step: half the micro-operations of a 16-lane one, the same answers bit for bit.
     if constexpr (L > 8)
-        if (std::min(n, 16 * k + 16) - 16 * k <= 8) return chunkIntersect<8>(kind, ray, rows, n, k, best);
-#endif
+        if (narrowChunk<L>(n, k)) return chunkIntersect<8>(kind, ray, rows, n, k, best);
     bool found = false;
     NORI_TRIANGLE_COUNT(chunks, 1);
     const uint32_t end = std::min(n, 16 * k + 16);
@@ -623,6 +631,17 @@ bool leafIntersect(Intersector kind, const TriangleRay &ray, const float *rows, 
     return found;
 }
 
+/// Any hit in chunk k with t in [ray.mint, maxt], in steps of L lanes.
+template <int L>
+bool chunkOccluded(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k, float maxt) {
+    if constexpr (L > 8)
+        if (narrowChunk<L>(n, k)) return chunkOccluded<8>(kind, ray, rows, n, k, maxt);
+    NORI_TRIANGLE_COUNT(chunks, 1);
+    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L)
+        if (any(testStep<L, true>(kind, ray, rows, n, i, maxt).hit)) return true;
+    return false;
+}
+
 /// Any hit in the leaf with t in [ray.mint, maxt].
 template <int L>
 bool leafOccluded(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, float maxt) {
@@ -631,17 +650,7 @@ bool leafOccluded(Intersector kind, const TriangleRay &ray, const float *rows, u
         float tn[16];
         unsigned mask = n <= 16 ? 1u : chunkEntries<L>(ray, rows, n, g, maxt, tn);
         for (; mask; mask &= mask - 1) {
-            const uint32_t k = 16 * g + uint32_t(__builtin_ctz(mask));
-            NORI_TRIANGLE_COUNT(chunks, 1);
-#if NORI_LANES_AVX2
-            if constexpr (L > 8)
-                if (std::min(n, 16 * k + 16) - 16 * k <= 8) {  // as in chunkIntersect
-                    if (any(testStep<8, true>(kind, ray, rows, n, 16 * k, maxt).hit)) return true;
-                    continue;
-                }
-#endif
-            for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L)
-                if (any(testStep<L, true>(kind, ray, rows, n, i, maxt).hit)) return true;
+            if (chunkOccluded<L>(kind, ray, rows, n, 16 * g + uint32_t(__builtin_ctz(mask)), maxt)) return true;
         }
     }
     return false;
