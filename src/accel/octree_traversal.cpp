@@ -224,15 +224,27 @@ struct CellRay {
         if constexpr (L == S) {
             // One block, permuted into the ray's order at the end (lane-wise operations commute
             // with the permutation: the same bits as permuting first).
-            const U c = order.lanesAt(0);
             F t0, t1;
             slabs(0, t0, t1);
+            // The cells entered, in the node's order. One cell (most visits that enter any) is
+            // the nearest without the ray's order: no permutation and no order lookup between
+            // the box test and the next node's address, the traversal's critical path.
+            const unsigned cells = bits(t0 <= t1);
+            if (cells == 0) return -1;
+            if (!(cells & (cells - 1))) {
+                const int only = __builtin_ctz(cells);
+                nearChild = cellChild[only];
+                nearCount = cellCount[only];
+                entry = t0;
+                nearLane = only;
+                return 0;
+            }
+            const U c = order.lanesAt(0);
             t0 = permute(t0, c);
             t1 = permute(t1, c);
             // The lanes entered, as bits (edited in a general register, not as a vector mask):
             // the nearest cell is the highest set lane; the others are pushed.
             unsigned hit = bits(t0 <= t1);
-            if (hit == 0) return -1;
             const int top = 31 - __builtin_clz(hit);
             const uint32_t nearest = order.slot(top);
             nearChild = cellChild[nearest];
@@ -260,6 +272,14 @@ struct CellRay {
                 t0.storeu(entries + first);
             }
             if (hitCells == 0) return -1;
+            if (!(hitCells & (hitCells - 1))) {  // one cell: as above
+                const int only = __builtin_ctz(hitCells);
+                nearChild = cellChild[only];
+                nearCount = cellCount[only];
+                entry = F(entries[only]);
+                nearLane = 0;
+                return 0;
+            }
             int k = 0;
             for (int j = 0; j < S; j += L) {
                 const U c = order.lanesAt(j);
