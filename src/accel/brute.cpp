@@ -6,7 +6,7 @@ namespace nori {
 
 /// \brief `<accel type="brute">`: one leaf holding every triangle, tested with the same
 /// TriangleStore kernels as the octree's leaves (16 triangles at a time, skipping the
-/// 16-triangle chunks whose box the ray misses). Property: `intersector` (mt | watertight).
+/// blocks of triangles whose box the ray misses). Property: `intersector` (mt | watertight).
 class BruteAccel : public Accel {
 public:
     explicit BruteAccel(const PropertyList &props) : m_intersector(parseIntersector(props, "watertight")) {}

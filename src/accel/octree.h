@@ -106,7 +106,8 @@ struct OctreeKept {
 /// at a budget of references per triangle for any input: 8 for `count` and `seed`, 1.5 for
 /// `sah` (past it, straddling triangles go down loose, uncopied). Memory: 256-byte inner
 /// nodes plus one word per node; leaves and kept lists live in the TriangleStore (40 bytes per
-/// reference plus 24 bytes per 16-triangle chunk).
+/// reference plus 24 bytes per box of 8 triangles, of 16 in leaves above 128: see
+/// TriangleStore::blockSize).
 ///
 /// Traversal (octree_traversal.cpp): every traversal culls a child whose entry distance lies
 /// beyond the closest hit so far and never stops early (except `seed`), so the first-found

@@ -1,5 +1,5 @@
 /// \file triangle.cpp
-/// \brief Ray/triangle kernels (Möller–Trumbore, watertight), chunk boxes and the leaf triangle
+/// \brief Ray/triangle kernels (Möller–Trumbore, watertight), block boxes and the leaf triangle
 /// store, written once over lanes::VFloat<L> and instantiated for 16, 8 and 1 lanes.
 ///
 /// Compiled with -ffp-contract=off (src/accel/CMakeLists.txt): see triangle.h for why every
@@ -82,11 +82,12 @@ struct Keyed {
 typedef float KeyedVec __attribute__((vector_size(16), aligned(4), may_alias));
 static_assert(sizeof(Keyed) == sizeof(KeyedVec), "Keyed: (x, y, z, prim) in one vector");
 
-/// Order [begin, end) so that every aligned run of 16 is spatially compact: split at a
-/// multiple of 16 along the longest axis of the centroids, recursively (a median split as in
+/// Order [begin, end) so that every aligned run of 16, and each of its blocks of \p block
+/// (8 or 16: TriangleStore::blockSize), is spatially compact: split at a multiple of 16 (of 8
+/// within a run of 16) along the longest axis of the centroids, recursively (a median split as in
 /// a BVH's bottom levels).
-void orderChunks(KeyedVec *items, uint32_t begin, uint32_t end) {
-    if (end - begin <= 16) return;
+void orderChunks(KeyedVec *items, uint32_t begin, uint32_t end, uint32_t block) {
+    if (end - begin <= block) return;
     // The centroids' box as BoundingBox3f::expandBy makes it, four lanes at a time (the
     // fourth, prim's bits, unused).
     KeyedVec lo = KeyedVec{} + Infinity, hi = KeyedVec{} - Infinity;
@@ -96,7 +97,8 @@ void orderChunks(KeyedVec *items, uint32_t begin, uint32_t end) {
         hi = c > hi ? c : hi;
     }
     const int axis = BoundingBox3f(Point3f(lo[0], lo[1], lo[2]), Point3f(hi[0], hi[1], hi[2])).majorAxis();
-    uint32_t chunks = (end - begin + 15) / 16, mid = begin + 16 * ((chunks + 1) / 2);
+    const uint32_t unit = end - begin > 16 ? 16 : 8;
+    const uint32_t units = (end - begin + unit - 1) / unit, mid = begin + unit * ((units + 1) / 2);
     // (The chunks' sets as std::nth_element makes them, up to ties, in less time on large
     // leaves: see selectSmallest(). pa5 table's build 4.9 -> 4.2 ms.)
     KeyedVec *first = items + begin, *kth = items + mid, *last = items + end;
@@ -105,8 +107,8 @@ void orderChunks(KeyedVec *items, uint32_t begin, uint32_t end) {
     case 1: selectSmallest(first, kth, last, [](const KeyedVec &k) { return k[1]; }); break;
     default: selectSmallest(first, kth, last, [](const KeyedVec &k) { return k[2]; }); break;
     }
-    orderChunks(items, begin, mid);
-    orderChunks(items, mid, end);
+    orderChunks(items, begin, mid, block);
+    orderChunks(items, mid, end, block);
 }
 } // namespace
 
@@ -138,7 +140,7 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n, cons
             }
             items[i] = {key, ids[i]};
         }
-        orderChunks(reinterpret_cast<KeyedVec *>(items.data()), 0, n);
+        orderChunks(reinterpret_cast<KeyedVec *>(items.data()), 0, n, blockSize(n));
         for (uint32_t i = 0; i < n; ++i) ordered[i] = items[i].prim;
         prims = ordered.data();
     }
@@ -151,13 +153,13 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n, cons
             for (int c = 0; c < 3; ++c) rows[(3 * v + c) * n + i] = p[v][c];
     }
     if (n <= 16) return;
-    // Chunk boxes, structure of arrays: rows min x, y, z, max x, y, z of nc floats (from the
+    // Block boxes, structure of arrays: rows min x, y, z, max x, y, z of nb floats (from the
     // rows just written, corner by corner as before).
-    const uint32_t nc = (n + 15) / 16;
+    const uint32_t nb = blockCount(n), size = blockSize(n);
     float *boxes = rows + size_t(10) * n;
-    for (uint32_t k = 0; k < nc; ++k) {
+    for (uint32_t k = 0; k < nb; ++k) {
         BoundingBox3f b;
-        for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); ++i) {
+        for (uint32_t i = size * k; i < std::min(n, size * k + size); ++i) {
             BoundingBox3f t;
             for (int v = 0; v < 3; ++v)
                 t.expandBy(Point3f(rows[(3 * v) * n + i], rows[(3 * v + 1) * n + i], rows[(3 * v + 2) * n + i]));
@@ -168,8 +170,8 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n, cons
             b.expandBy(t);
         }
         for (int a = 0; a < 3; ++a) {
-            boxes[size_t(a) * nc + k] = b.min[a];
-            boxes[size_t(3 + a) * nc + k] = b.max[a];
+            boxes[size_t(a) * nb + k] = b.min[a];
+            boxes[size_t(3 + a) * nb + k] = b.max[a];
         }
     }
 }
@@ -530,36 +532,36 @@ template <int L, bool kAnyHit = false>
 /// One step of the chosen kernel. With \p kAnyHit (an occlusion query) the step may stop at
 /// the first lanes surely hit, and then reports only those.
 template <int L, bool kAnyHit = false>
-[[gnu::always_inline]] inline Step<L> testStep(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i, float maxt,
-                                               uint32_t skipPrim = ~0u) {
-    const VMask<L> m = VMask<L>::firstN(n - i);
+[[gnu::always_inline]] inline Step<L> testStep(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
+                                               uint32_t end, float maxt, uint32_t skipPrim = ~0u) {
+    const VMask<L> m = VMask<L>::firstN(end - i);
     return kind == Intersector::MT ? mollerTrumbore<L, kAnyHit>(r, rows, n, i, m, maxt, skipPrim)
                                    : watertight<L, kAnyHit>(r, rows, n, i, m, maxt, skipPrim);
 }
 
-/// Whether chunk k of a leaf of n triangles (a small leaf or kept list, the tail of a leaf)
-/// holds at most eight: in a 16-lane build it takes one 8-lane step instead, half the
+/// Whether triangles [first, end) of a leaf (a small leaf or kept list, a leaf's tail, one
+/// block) are at most eight: in a 16-lane build they take one 8-lane step instead, half the
 /// micro-operations of a 16-lane one, with the same answers bit for bit.
 template <int L>
-inline bool narrowChunk(uint32_t n, uint32_t k) {
+inline bool narrowSpan(uint32_t first, uint32_t end) {
 #if NORI_LANES_AVX2
-    if constexpr (L > 8) return std::min(n, 16 * k + 16) - 16 * k <= 8;
+    if constexpr (L > 8) return end - first <= 8;
 #endif
-    (void)n, (void)k;
+    (void)first, (void)end;
     return false;
 }
 
-/// Closest hit over chunk k (triangles 16k .. 16k + 15) in steps of L lanes: the lexicographic
-/// minimum of (t, prim), so ties resolve the same way at every width.
+/// Closest hit over triangles [first, end) of a leaf (at most 16) in steps of L lanes: the
+/// lexicographic minimum of (t, prim), so ties resolve the same way at every width.
 template <int L>
-bool chunkIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k, Hit &best) {
+bool spanIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end,
+                   Hit &best) {
     if constexpr (L > 8)
-        if (narrowChunk<L>(n, k)) return chunkIntersect<8>(kind, ray, rows, n, k, best);
+        if (narrowSpan<L>(first, end)) return spanIntersect<8>(kind, ray, rows, n, first, end, best);
     bool found = false;
     NORI_TRIANGLE_COUNT(chunks, 1);
-    const uint32_t end = std::min(n, 16 * k + 16);
-    for (uint32_t i = 16 * k; i < end; i += L) {
-        Step<L> s = testStep<L>(kind, ray, rows, n, i, best.t, best.prim);
+    for (uint32_t i = first; i < end; i += L) {
+        Step<L> s = testStep<L>(kind, ray, rows, n, i, end, best.t, best.prim);
         if (!any(s.hit)) continue;
         const unsigned hits = bits(s.hit);
         float tmin;
@@ -585,21 +587,21 @@ bool chunkIntersect(Intersector kind, const TriangleRay &ray, const float *rows,
     return found;
 }
 
-/// Entry distances of the ray into chunk boxes 16g .. 16g + 15 of a leaf (tn[j] for chunk
-/// 16g + j); bit j of the result is set when that chunk is entered within [ray.mint, maxt].
+/// Entry distances of the ray into block boxes 16g .. 16g + 15 of a leaf (tn[j] for block
+/// 16g + j); bit j of the result is set when that block is entered within [ray.mint, maxt].
 /// The conservative slab test of the octree nodes; a NaN never narrows the interval.
 template <int L>
-unsigned chunkEntries(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, float tn[16]) {
+unsigned blockEntries(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, float tn[16]) {
     using F = VFloat<L>;
-    const uint32_t nc = (n + 15) / 16;
+    const uint32_t nb = TriangleStore::blockCount(n);
     const float *boxes = rows + size_t(10) * n;
     unsigned mask = 0;
-    for (uint32_t k = 16 * g; k < std::min(nc, 16 * g + 16); k += L) {
-        const VMask<L> m = VMask<L>::firstN(nc - k);
+    for (uint32_t k = 16 * g; k < std::min(nb, 16 * g + 16); k += L) {
+        const VMask<L> m = VMask<L>::firstN(nb - k);
         F t0 = r.mint, t1 = maxt;
         for (int a = 0; a < 3; ++a) {
-            F nearPlane = F::load(boxes + size_t(3 * r.neg[a] + a) * nc + k, m);
-            F farPlane = F::load(boxes + size_t(3 * (1 - r.neg[a]) + a) * nc + k, m);
+            F nearPlane = F::load(boxes + size_t(3 * r.neg[a] + a) * nb + k, m);
+            F farPlane = F::load(boxes + size_t(3 * (1 - r.neg[a]) + a) * nb + k, m);
             t0 = max((nearPlane - r.o[a]) * r.rcpNear[a], t0);
             t1 = min((farPlane - r.o[a]) * r.rcpFar[a], t1);
         }
@@ -609,48 +611,80 @@ unsigned chunkEntries(const TriangleRay &r, const float *rows, uint32_t n, uint3
     return mask;
 }
 
-/// Closest hit in a leaf: chunks in order of entry distance (ties: lower index), skipping those
+/// The triangles of block k (of a leaf above 16) to test together: the block's own, or for
+/// blocks of 8 its pair's too (blocks 2j and 2j + 1, one aligned run of 16) when \p both: for a
+/// 16-lane kernel, one step for both costs no more than two half steps. At every width, so that
+/// every width visits the same triangles in the same order (the choice between float and
+/// double t depends on the closest hit so far: see needsExactT). Clears what it takes from
+/// \p mask.
+inline void blockSpan(uint32_t n, uint32_t g, int k, bool both, unsigned &mask, uint32_t &first, uint32_t &end) {
+    const uint32_t size = TriangleStore::blockSize(n);
+    mask &= ~(1u << k);
+    first = (16 * g + uint32_t(k)) << TriangleStore::blockShift(n);
+    if (size == 8 && both) {
+        mask &= ~(1u << (k ^ 1));
+        first &= ~15u;
+        end = std::min(n, first + 16);
+    } else {
+        end = std::min(n, first + size);
+    }
+}
+
+/// Closest hit in a leaf: blocks in order of entry distance (ties: lower index), skipping those
 /// entered beyond the closest hit so far.
 template <int L>
 bool leafIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, Hit &best) {
-    if (n <= 16) return chunkIntersect<L>(kind, ray, rows, n, 0, best);
+    if (n <= 16) return spanIntersect<L>(kind, ray, rows, n, 0, n, best);
     bool found = false;
-    const uint32_t nc = (n + 15) / 16;
-    for (uint32_t g = 0; 16 * g < nc; ++g) {
+    const uint32_t nb = TriangleStore::blockCount(n);
+    for (uint32_t g = 0; 16 * g < nb; ++g) {
         float tn[16];
-        unsigned mask = chunkEntries<L>(ray, rows, n, g, ray.cullLimit(best.t), tn);
+        unsigned mask = blockEntries<L>(ray, rows, n, g, ray.cullLimit(best.t), tn);
         while (mask) {
+            // The nearest block left (the running minimum kept in a register, not reloaded).
             int k = __builtin_ctz(mask);
-            for (unsigned b = mask & (mask - 1); b; b &= b - 1)
-                if (tn[__builtin_ctz(b)] < tn[k]) k = __builtin_ctz(b);
-            if (tn[k] > ray.cullLimit(best.t)) break;
-            mask &= ~(1u << k);
-            found |= chunkIntersect<L>(kind, ray, rows, n, 16 * g + uint32_t(k), best);
+            float tk = tn[k];
+            for (unsigned b = mask & (mask - 1); b; b &= b - 1) {
+                const int j = __builtin_ctz(b);
+                const float tj = tn[j];
+                if (tj < tk) k = j, tk = tj;
+            }
+            const float limit = ray.cullLimit(best.t);
+            if (tk > limit) break;
+            uint32_t first, end;
+            blockSpan(n, g, k, (mask >> (k ^ 1) & 1u) && tn[k ^ 1] <= limit, mask, first, end);
+            found |= spanIntersect<L>(kind, ray, rows, n, first, end, best);
         }
     }
     return found;
 }
 
-/// Any hit in chunk k with t in [ray.mint, maxt], in steps of L lanes.
+/// Any hit among triangles [first, end) (at most 16) with t in [ray.mint, maxt], in steps of L
+/// lanes.
 template <int L>
-bool chunkOccluded(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k, float maxt) {
+bool spanOccluded(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end,
+                  float maxt) {
     if constexpr (L > 8)
-        if (narrowChunk<L>(n, k)) return chunkOccluded<8>(kind, ray, rows, n, k, maxt);
+        if (narrowSpan<L>(first, end)) return spanOccluded<8>(kind, ray, rows, n, first, end, maxt);
     NORI_TRIANGLE_COUNT(chunks, 1);
-    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L)
-        if (any(testStep<L, true>(kind, ray, rows, n, i, maxt).hit)) return true;
+    for (uint32_t i = first; i < end; i += L)
+        if (any(testStep<L, true>(kind, ray, rows, n, i, end, maxt).hit)) return true;
     return false;
 }
 
 /// Any hit in the leaf with t in [ray.mint, maxt].
 template <int L>
 bool leafOccluded(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, float maxt) {
-    const uint32_t nc = (n + 15) / 16;
-    for (uint32_t g = 0; 16 * g < nc; ++g) {
+    if (n <= 16) return spanOccluded<L>(kind, ray, rows, n, 0, n, maxt);
+    const uint32_t nb = TriangleStore::blockCount(n);
+    for (uint32_t g = 0; 16 * g < nb; ++g) {
         float tn[16];
-        unsigned mask = n <= 16 ? 1u : chunkEntries<L>(ray, rows, n, g, maxt, tn);
-        for (; mask; mask &= mask - 1) {
-            if (chunkOccluded<L>(kind, ray, rows, n, 16 * g + uint32_t(__builtin_ctz(mask)), maxt)) return true;
+        unsigned mask = blockEntries<L>(ray, rows, n, g, maxt, tn);
+        while (mask) {
+            const int k = __builtin_ctz(mask);
+            uint32_t first, end;
+            blockSpan(n, g, k, mask >> (k ^ 1) & 1u, mask, first, end);
+            if (spanOccluded<L>(kind, ray, rows, n, first, end, maxt)) return true;
         }
     }
     return false;
@@ -661,8 +695,9 @@ template <int L>
 unsigned chunkDecisions(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t k,
                         float maxt, TriangleStore::ChunkAnswers &out) {
     unsigned hits = 0, known = 0;
-    for (uint32_t i = 16 * k; i < std::min(n, 16 * k + 16); i += L) {
-        Step<L> s = testStep<L>(kind, ray, rows, n, i, maxt);
+    const uint32_t end = std::min(n, 16 * k + 16);
+    for (uint32_t i = 16 * k; i < end; i += L) {
+        Step<L> s = testStep<L>(kind, ray, rows, n, i, end, maxt);
         float t[L], u[L], v[L];
         s.t.storeu(t);
         s.u.storeu(u);

@@ -72,14 +72,24 @@ struct TriangleRay {
 ///
 /// A leaf of n triangles is one block of words at an offset chosen by its owner: nine rows of
 /// n floats (the corners v0, v1, v2, each row x, y, z, for both intersectors: either may
-/// recompute t on the exact triangle), then the n global triangle ids, then (for n > 16) one bounding box per 16-triangle chunk.
-/// Structure-of-arrays rows let the SIMD kernels load 16 triangles with masked loads and no
-/// padding; the triangles of a leaf are ordered so that each chunk is spatially compact, and a
-/// chunk whose box the ray misses is skipped.
+/// recompute t on the exact triangle), then the n global triangle ids, then (for n > 16) one
+/// bounding box per block of blockSize(n) triangles. Structure-of-arrays rows let the SIMD kernels load
+/// 16 triangles with masked loads and no padding; the triangles of a leaf are ordered so that each
+/// block is spatially compact, and a block whose box the ray misses is skipped.
 class TriangleStore {
 public:
+    /// \brief Triangles per box of a leaf of \p n > 16 triangles. Up to 128 triangles (16 boxes,
+    /// one 16-lane box test), half a 16-lane step: a ray that enters one of two neighbouring
+    /// blocks pays an 8-lane step (on cores that split a 16-lane operation in two halves, half
+    /// the work), one that enters both a 16-lane step. Larger leaves (thin triangles that no
+    /// split separates: grass) keep one box per 16: twice the boxes would cost more to test
+    /// and order than the half steps save.
+    static constexpr uint32_t blockSize(uint32_t n) { return 1u << blockShift(n); }
+    static constexpr uint32_t blockShift(uint32_t n) { return n <= 128 ? 3 : 4; }
+    /// \brief Boxes of a leaf of \p n triangles (a shift, not a division: on the hot path).
+    static constexpr uint32_t blockCount(uint32_t n) { return n > 16 ? (n + blockSize(n) - 1) >> blockShift(n) : 0; }
     /// \brief Words (4 bytes) taken by a leaf of \p n triangles.
-    static size_t leafWords(uint32_t n) { return size_t(10) * n + (n > 16 ? size_t(6) * ((n + 15) / 16) : 0); }
+    static size_t leafWords(uint32_t n) { return size_t(10) * n + size_t(6) * blockCount(n); }
 
     /// \brief Allocate \p words words for intersector \p kind.
     void reset(Intersector kind, size_t words);
