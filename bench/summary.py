@@ -9,9 +9,16 @@ With --floors, a figure below issue 9's floor is marked ✗ (primary >= 0.7, dif
 shadow >= 0.7, build <= 1, bytes <= 1, mismatches against robust <= Embree default's own) and a
 last line counts the rows that meet each floor.
 
-usage: bench/summary.py RESULT.json [RESULT.json ...] [--names NAME,NAME,...] [--floors]
+With --median, results for the same input (runs of nori-bench in separate processes, e.g. one
+directory of JSON files per run) become one row: the median of each ratio over the runs. On a
+shared machine one process's ratios move by up to +-20 %; the median of three is steadier.
+Mismatches are the same in every run (same rays, deterministic answers); the first run's are shown.
+
+usage: bench/summary.py RESULT.json [RESULT.json ...] [--names NAME,NAME,...] [--floors] [--median]
 """
+import copy
 import json
+import statistics
 import sys
 
 
@@ -69,6 +76,28 @@ def row(result, name, floors=False, met=None):
     return "| %s | %s | %s | %s | %s | %s (%s)%s | %s |" % (name, tris, " | ".join(ratios), build, size, mism, own, mark, exact)
 
 
+def median_of(results):
+    """One result whose octree default run and build/bytes ratios are the medians of \p results
+    (runs of one input); everything else is the first run's."""
+    first = copy.deepcopy(results[0])
+    if len(results) == 1:
+        return first
+    runs = [default_run(r) for r in results]
+    if any(r is None for r in runs):
+        return first
+    out = default_run(first)
+    for s in ["primary", "diffuse", "shadow"]:
+        out[s]["ratio_vs_embree"] = statistics.median(r[s]["ratio_vs_embree"] for r in runs)
+    e = first["embree"]
+    if e["build_ms"] > 0:
+        out["build_ms"] = e["build_ms"] * statistics.median(
+            default_run(r)["build_ms"] / r["embree"]["build_ms"] for r in results)
+    if e.get("bytes") and out.get("bytes"):
+        out["bytes"] = e["bytes"] * statistics.median(default_run(r)["bytes"] / r["embree"]["bytes"] for r in results)
+    first["median_of"] = len(results)
+    return first
+
+
 def machine_line(result):
     """Where a result was measured (absent from files written before nori-bench recorded it)."""
     m = result.get("machine")
@@ -88,8 +117,14 @@ def main(argv):
         print(__doc__, file=sys.stderr)
         return 2
     floors = "--floors" in argv
-    argv = [a for a in argv if a != "--floors"]
+    median = "--median" in argv
+    argv = [a for a in argv if a not in ("--floors", "--median")]
     results = load(argv)
+    if median:
+        groups = {}
+        for r in results:
+            groups.setdefault(r["mesh"], []).append(r)
+        results = [median_of(g) for g in groups.values()]
     met = {}
     print("| scene | tris | primary | diffuse | shadow | build | bytes | mismatches p/d/s (Embree default's own) "
           "| exact errors p/d/s (Embree default's) |")
@@ -101,6 +136,9 @@ def main(argv):
             print(line)
     machines = sorted({machine_line(r) for r in results})
     print("\n" + "; ".join(machines) + ".")
+    if median:
+        counts = sorted({r.get("median_of", 1) for r in results})
+        print("\nEach ratio: the median of %s runs." % "/".join(str(c) for c in counts))
     if floors:
         print("\nFloors met, of %d rows: " % len(results) + ", ".join("%s %d" % (k, met.get(k, 0)) for k in FLOOR_NAMES))
     print("\nprimary/diffuse/shadow: octree rays/s over Embree default's, interleaved (> 1: faster than Embree); "
