@@ -41,9 +41,12 @@ constexpr double kSahRefBudget = 1.5;
 /// 1-6 % fewer bytes everywhere; 1.5 helps the meshes more but drops city below 0.7 primary.
 ///
 /// A leaf of more than 16 triangles is not tested whole: its chunks are spatially compact
-/// (TriangleStore::setLeaf orders them by median splits) and each has a box, tested sixteen at
-/// a time, so a ray that enters the leaf meets one chunk and a small share of the others (on a
-/// surface, the chunk boxes' areas add up to about the surface's, not c times the leaf's).
+/// (TriangleStore::setLeaf orders them by median splits) and each has a box (one per block of 8
+/// since the tenth round, so a ray often pays half a chunk: TriangleStore::blockSize; the prices
+/// below were measured with boxes per 16, and 1.5 or 2.5 for kChunk measured no better since),
+/// tested sixteen at a time, so a ray that enters the leaf meets one chunk and a small share of
+/// the others (on a surface, the chunk boxes' areas add up to about the surface's, not c times
+/// the leaf's).
 /// kOtherChunks is that share. Counting every chunk (1.0) made the `sah` tree twice as deep as
 /// it pays on meshes, with 6 triangles per leaf; 0.1 (nori-bench, dragon_res2, bunny, sphere,
 /// city, grass, stadium, one interleaved run each) halves the nodes, builds 10-30 % faster and
