@@ -91,9 +91,9 @@ def median_of(results):
     e = first["embree"]
     if e["build_ms"] > 0:
         out["build_ms"] = e["build_ms"] * statistics.median(
-            default_run(r)["build_ms"] / r["embree"]["build_ms"] for r in results)
+            run["build_ms"] / r["embree"]["build_ms"] for run, r in zip(runs, results))
     if e.get("bytes") and out.get("bytes"):
-        out["bytes"] = e["bytes"] * statistics.median(default_run(r)["bytes"] / r["embree"]["bytes"] for r in results)
+        out["bytes"] = e["bytes"] * statistics.median(run["bytes"] / r["embree"]["bytes"] for run, r in zip(runs, results))
     first["median_of"] = len(results)
     return first
 
