@@ -43,7 +43,8 @@ constexpr double kSahRefBudget = 1.5;
 /// A leaf of more than 16 triangles is not tested whole: its chunks are spatially compact
 /// (TriangleStore::setLeaf orders them by median splits) and each has a box (one per block of 8
 /// since the tenth round, so a ray often pays half a chunk: TriangleStore::blockSize; the prices
-/// below were measured with boxes per 16, and 1.5 or 2.5 for kChunk measured no better since),
+/// below were measured with boxes per 16, and 1.5 or 2.5 for kChunk measured no better since,
+/// nor did pricing 8-lane steps at half a chunk: bench/README.md, eleventh round),
 /// tested sixteen at a time, so a ray that enters the leaf meets one chunk and a small share of
 /// the others (on a surface, the chunk boxes' areas add up to about the surface's, not c times
 /// the leaf's).
