@@ -72,6 +72,8 @@ OctreeAccel::OctreeAccel(const PropertyList &props) {
     // chain of nodes they replace (AVX2, clutter primary 1.08x; eight-slot wide nodes, which
     // fit one block, fold too little to matter: 0.99-1.01x). Tests turn it on at every width.
     m_fold = props.getBoolean("fold", lanes::kMaxLanes >= OctreeWideNode::kSlots);
+    // Off: the plain surface-area cost, for comparison (bench/README.md, twelfth round).
+    m_termination = props.getBoolean("termination", true);
 }
 
 bool OctreeAccel::intersect(const Ray3f &ray, Hit &hit) const {
@@ -114,9 +116,10 @@ std::vector<AccelStat> OctreeAccel::statistics() const {
 }
 
 std::string OctreeAccel::toString() const {
-    return fmt::format("OctreeAccel[buildRule={}, maxDepth={}, leafSize={}, overlap={}, traversal={}, fold={}, intersector={}]",
-                       buildRuleName(m_buildRule), m_maxDepth, m_leafSize, m_overlap == Overlap::Exact ? "exact" : "bbox",
-                       traversalName(m_traversal), m_fold, intersectorName(m_intersector));
+    return fmt::format(
+        "OctreeAccel[buildRule={}, maxDepth={}, leafSize={}, overlap={}, traversal={}, fold={}, intersector={}, termination={}]",
+        buildRuleName(m_buildRule), m_maxDepth, m_leafSize, m_overlap == Overlap::Exact ? "exact" : "bbox",
+        traversalName(m_traversal), m_fold, intersectorName(m_intersector), m_termination);
 }
 
 NORI_REGISTER_CLASS(OctreeAccel, "octree", EAccel);

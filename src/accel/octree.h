@@ -91,7 +91,9 @@ struct OctreeKept {
 /// \brief Octree accelerator. Properties: `buildRule` (sah* | count | seed), `maxDepth`,
 /// `leafSize` (a node with fewer triangles is a leaf), `overlap` (bbox | exact*), `traversal`
 /// (seed | sorted | simd*), `intersector` (mt | watertight*), `fold` (whether the simd
-/// traversals use wide nodes, see fold(); default: where the machine tests 16 lanes at once).
+/// traversals use wide nodes, see fold(); default: where the machine tests 16 lanes at once),
+/// `termination` (`sah` only, true*: whether the cost model counts the rays that stop in a
+/// nearer child before reaching a farther one).
 ///
 /// Build (octree_build.cpp): every cell splits at its midpoint; triangles are classified
 /// against the midplanes by their bounding boxes, the separating-axis test only for those that
@@ -100,7 +102,8 @@ struct OctreeKept {
 /// or long scenes) unless triangles span those planes (a city's walls cross its horizontal
 /// planes) and a sampled surface-area estimate prefers bisections that copy fewer of them,
 /// keeps triangles that would be copied into many children in the node itself, and makes a
-/// leaf where a surface-area cost model says splitting no longer pays.
+/// leaf where a surface-area cost model says splitting no longer pays (counting, with
+/// `termination`, the rays that stop in a nearer child before they reach a farther one).
 /// `count` is the octree of issue 3 (x, y, z octants, leaf below leafSize); `seed` is the seed
 /// report's rule (each later sibling counts one level deeper). Every rule stops at maxDepth and
 /// at a budget of references per triangle for any input: 8 for `count` and `seed`, 1.5 for
@@ -235,6 +238,7 @@ private:
     Traversal m_traversal;
     Intersector m_intersector;
     bool m_fold;
+    bool m_termination;
 
     // Structure: node 0 is the root (always an inner node), referenced as (0, m_rootCount)
     // (before fold()).

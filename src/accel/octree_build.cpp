@@ -52,6 +52,8 @@ constexpr double kSahRefBudget = 1.5;
 /// it pays on meshes, with 6 triangles per leaf; 0.1 (nori-bench, dragon_res2, bunny, sphere,
 /// city, grass, stadium, one interleaved run each) halves the nodes, builds 10-30 % faster and
 /// keeps the ray ratios within the machine's noise (grass ends with 73 inner nodes).
+/// A split's children are further discounted by the rays that stop in a nearer child
+/// (split(): termination), which the leaf's price already holds through kOtherChunks.
 struct Cost {
     static constexpr double kNode = 1.0;          ///< visiting an inner node
     static constexpr double kChunk = 2.0;         ///< sixteen ray/triangle tests
@@ -1066,8 +1068,38 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         double cost = Cost::kNode + (keptGroups.size() > 1 ? kKeptBoxCost * double(keptGroups.size() - 1) : 0.0);
         for (const TempNode::KeptGroup &g : keptGroups)
             cost += (boxArea > 0.0 ? std::min(1.0, area(g.box) / boxArea) : 1.0) * Cost::list(g.count);
-        for (int c = 0; c < 8; ++c) cost += probability(c) * Cost::list(counts[c]);
-        if (cost >= Cost::list(n)) return nullptr;
+        double children = 0.0, entries = 0.0;
+        for (int c = 0; c < 8; ++c) {
+            children += probability(c) * Cost::list(counts[c]);
+            entries += probability(c);
+        }
+        const double leaf = Cost::list(n);
+        // Termination (Ize & Hansen 2011, "RTSAH Traversal Order for Occlusion Rays"): the
+        // traversal visits the children front to back and culls those beyond the closest hit,
+        // so a ray that passes through several children (entries > 1 on average) often stops
+        // in the first it enters. A child visited after another is reached only if the ray
+        // missed that other child's triangles: opacity alpha_c = 1 - exp(-h_c), h_c the
+        // expected hits of a ray entering c's box (a triangle of area a: 2a / A(box), its
+        // area shared among the children it is copied into). Priced only where it could turn
+        // a leaf into a split.
+        const double later = entries > 1.0 ? (entries - 1.0) / entries : 0.0;
+        if (in.termination && cost + children >= leaf && cost + children * (1.0 - later) < leaf) {
+            double hits[8] = {};
+            for (size_t i = 0; i < n; ++i) {
+                const unsigned m = masks[i];
+                if (!m) continue;  // kept
+                const double a = double(in.areas[ids[i].id & ~kLooseBit]) / double(__builtin_popcount(m));
+                for (unsigned k = m; k; k &= k - 1) hits[__builtin_ctz(k)] += a;
+            }
+            double opaque = 0.0;
+            for (int c = 0; c < 8; ++c) {
+                const double a = area(boxes[c]);
+                if (a > 0.0) opaque += probability(c) * (1.0 - std::exp(-hits[c] / a));
+            }
+            children *= 1.0 - later * opaque / entries;
+        }
+        cost += children;
+        if (cost >= leaf) return nullptr;
     } else if (in.rule == Rule::Count && (sumDown > 4 * down || (largest == down && sumDown >= 2 * down))) {
         // No progress: the triangles are mostly larger than the children (each lands in more
         // than half of them), or the fullest child keeps every triangle while many straddle

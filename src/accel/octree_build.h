@@ -20,6 +20,7 @@ struct Input {
     int maxDepth;
     size_t leafSize;
     bool exact;  ///< separating-axis test for triangles whose box straddles a midplane
+    bool termination = true;  ///< `sah`: price a split's children by the rays that reach them (see split())
 };
 
 /// A reference is a global triangle id; the `sah` rule marks with this bit the triangles that

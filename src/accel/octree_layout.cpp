@@ -134,7 +134,8 @@ void OctreeAccel::buildImpl() {
         }
     }
 
-    octree_build::Input in{vertices.data(), areas.data(), m_buildRule, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact};
+    octree_build::Input in{vertices.data(), areas.data(), m_buildRule, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact,
+                           m_termination};
     std::unique_ptr<TempNode> root = octree_build::subdivide(in, cell, sceneBox, refs.get(), count);
     bool rootIsLeaf = !root;
     if (rootIsLeaf) {

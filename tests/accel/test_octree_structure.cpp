@@ -595,3 +595,33 @@ TEST(OctreeLeaves, NoInnerNodeHoldsOneChunkOrLess) {
     EXPECT_EQ(smallDefault, 0);
     EXPECT_GT(smallEight, 0);
 }
+
+// The cost model's termination term (Ize & Hansen 2011; octree_build.cpp, split()): a ray that
+// crosses several children stops in the first whose triangles it hits, so splitting an opaque,
+// crowded cell pays more than the plain surface-area cost says. It must deepen the tree of a
+// city (walls behind walls), and leave a cloud of tiny triangles that rays pass through almost
+// untouched (opacity near zero: the same tree within a few borderline nodes).
+TEST(OctreeLeaves, TerminationSplitsOpaqueCellsNotTransparentOnes) {
+    auto innerNodes = [](const Mesh &mesh, bool termination) {
+        PropertyList p;
+        p.setBoolean("termination", termination);
+        return statsOf(*makeAccel("octree", p, {&mesh}))["internal_nodes"];
+    };
+    gen::GeneratedScene city = generated("city", 20000, 7);
+    Mesh cityMesh(city.mesh, "city");
+    const double cityOn = innerNodes(cityMesh, true), cityOff = innerNodes(cityMesh, false);
+
+    MeshData dust;
+    pcg32 rng(12);
+    auto u = [&] { return float(rng() >> 8) * 0x1p-24f; };
+    for (int i = 0; i < 20000; ++i) {
+        float x = u(), y = u(), z = u();
+        addTriangle(dust, Point3f(x, y, z), 1e-3f);
+    }
+    Mesh dustMesh(dust, "dust");
+    const double dustOn = innerNodes(dustMesh, true), dustOff = innerNodes(dustMesh, false);
+    std::printf("[structure] inner nodes with termination / without: city 20k %.0f / %.0f, dust 20k %.0f / %.0f\n",
+                cityOn, cityOff, dustOn, dustOff);
+    EXPECT_GT(cityOn, 1.1 * cityOff);
+    EXPECT_LE(std::abs(dustOn - dustOff), 0.01 * dustOff);
+}
