@@ -84,6 +84,34 @@ void OptionParser::declare(CliApp &cli, BenchOptions &o) {
         list->group(ContenderGroup);
         defaultOnly->excludes(list);
     }
+    // Properties the lists above vary are refused here (each run sets them itself).
+    app.add_option_function<std::vector<std::string>>(
+           "--octree-set",
+           [&o](const std::vector<std::string> &items) {
+               for (const std::string &item : items) {
+                   const size_t eq = item.find('=');
+                   o.octreeProperties.emplace_back(item.substr(0, eq), item.substr(eq + 1));
+               }
+           },
+           "one more octree property for every octree run, NAME=VALUE (repeatable; true/false, integers and "
+           "numbers are typed as such): e.g. termination=false, fold=false")
+        ->check(CLI::Validator(
+            [](std::string &item) -> std::string {
+                const size_t eq = item.find('=');
+                if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
+                    return "expected NAME=VALUE, got '" + item + "'";
+                const std::string name = item.substr(0, eq);
+                for (const char *listed : {"buildRule", "maxDepth", "leafSize", "overlap", "traversal", "intersector"})
+                    if (name == listed)
+                        return "'" + name + "' is set by the contender lists (--build-rules, --depths, --leaf-sizes, "
+                                            "--overlaps, --traversals, --intersectors)";
+                return std::string();
+            },
+            "NAME=VALUE"))
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->allow_extra_args(false)
+        ->option_text("NAME=VALUE")
+        ->group(ContenderGroup);
     CLI::Option *noBrute =
         app.add_flag("--no-brute", o.noBrute, "skip brute force (it always skips meshes above 100k triangles)")
             ->group(ContenderGroup);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <set>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct BenchOptions {
     std::vector<std::string> overlaps{"exact", "bbox"};
     std::vector<std::string> traversals;   ///< empty: every traversal the octree offers
     std::vector<std::string> intersectors{"mt", "watertight"};
+    /// --octree-set NAME=VALUE (repeatable): further octree properties for every octree run
+    /// (e.g. termination=false, fold=false), in the order given.
+    std::vector<std::pair<std::string, std::string>> octreeProperties;
     int threads = 0;                  ///< 0: all hardware threads
     int repeats = 3;
     /// --cpu-time: time ray sets by the thread's CPU time instead of the wall clock (single

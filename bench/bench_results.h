@@ -6,6 +6,7 @@
 #include <nori/accel.h>
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace nori::bench {
@@ -31,6 +32,9 @@ struct OctreeConfig {
     std::string overlap, traversal, intersector;
     bool isDefault = false;   ///< equals the octree's own defaults
     bool useDefaults = false; ///< create with an empty property list (--default-only)
+    /// --octree-set: further properties, on top of the settings above (not part of sameSettings:
+    /// the defaults with these are still the run the renderer's defaults are compared in).
+    std::vector<std::pair<std::string, std::string>> properties;
 
     std::string label() const;
     bool sameSettings(const OctreeConfig &o) const {

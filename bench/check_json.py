@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Check that a nori-bench JSON file has the shape of issue 4 (used by ctest).
 
-usage: check_json.py FILE [--min-runs N]
+usage: check_json.py FILE [--min-runs N] [--properties NAME=VALUE,...]
+
+--properties: every octree run must carry exactly these --octree-set properties.
 
 Checks structure, types and internal arithmetic (Mrays/s = rays / ms / 1000, mismatches
 <= rays); never a timing. Exits 1 with one line per problem.
@@ -52,7 +54,7 @@ def check_set(obj, name, where, contender):
                 fail(w, f"disputed {disputed} < mismatches {mism}: every mismatch is refereed")
 
 
-def check_mesh(m, where):
+def check_mesh(m, where, properties=None):
     if not isinstance(m, dict):
         fail(where, "expected an object")
         return 0
@@ -113,6 +115,9 @@ def check_mesh(m, where):
             number(run, "leaf_nodes", w, 1, integral=True)
             number(run, "avg_tris_per_leaf", w, 0)
             number(run, "bytes", w, 1, integral=True)
+            given = run.get("properties", {})
+            if properties is not None and given != properties:
+                fail(w, f"'properties' is {given!r}, expected {properties!r}")
         for name in SETS:
             check_set(run, name, w, True)
     return len(runs)
@@ -125,6 +130,9 @@ def main(argv):
     min_runs = 0
     if "--min-runs" in argv:
         min_runs = int(argv[argv.index("--min-runs") + 1])
+    properties = None
+    if "--properties" in argv:
+        properties = dict(item.split("=", 1) for item in argv[argv.index("--properties") + 1].split(","))
     try:
         with open(argv[1]) as f:
             data = json.load(f)
@@ -135,7 +143,7 @@ def main(argv):
     if not meshes:
         fail(argv[1], "empty array")
     for i, m in enumerate(meshes):
-        runs = check_mesh(m, f"[{i}]" if isinstance(data, list) else "$")
+        runs = check_mesh(m, f"[{i}]" if isinstance(data, list) else "$", properties)
         if runs < min_runs:
             fail(f"[{i}]", f"{runs} runs, expected at least {min_runs}")
     for p in problems:

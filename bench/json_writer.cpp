@@ -64,6 +64,11 @@ Json runJson(const RunResult &r) {
         j["overlap"] = r.config.overlap;
         j["traversal"] = r.config.traversal;
         j["intersector"] = r.config.intersector;
+        if (!r.config.properties.empty()) {  // --octree-set, as given
+            Json props = Json::object();
+            for (const auto &[name, value] : r.config.properties) props[name] = value;
+            j["properties"] = props;
+        }
     }
     j["build_ms"] = number(r.buildMs);
     for (const AccelStat &s : r.stats) {

@@ -8,10 +8,29 @@
 namespace nori::bench {
 
 std::string OctreeConfig::label() const {
-    if (useDefaults && maxDepth == 0) return "octree (defaults)";
-    return fmt::format("{}d={} l={} {} {} {}", buildRule.empty() ? "" : buildRule + " ", maxDepth, leafSize, overlap,
-                       traversal, intersector);
+    std::string extra;
+    for (const auto &[name, value] : properties) extra += fmt::format(" {}={}", name, value);
+    if (useDefaults && maxDepth == 0) return "octree (defaults)" + extra;
+    return fmt::format("{}d={} l={} {} {} {}{}", buildRule.empty() ? "" : buildRule + " ", maxDepth, leafSize, overlap,
+                       traversal, intersector, extra);
 }
+
+namespace {
+/// Sets \p value as the type it reads as: true/false a boolean, an integer, a number, else a
+/// string (the octree's getters check the type they expect).
+void setTyped(PropertyList &props, const std::string &name, const std::string &value) {
+    if (value == "true" || value == "false") return props.setBoolean(name, value == "true");
+    static const std::regex integer(R"([+-]?[0-9]+)"), number(R"([+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?)");
+    if (std::regex_match(value, integer)) {
+        try {
+            return props.setInteger(name, std::stoi(value));
+        } catch (const std::out_of_range &) {
+        }
+    }
+    if (std::regex_match(value, number)) return props.setFloat(name, std::stof(value));
+    props.setString(name, value);
+}
+} // namespace
 
 bool OctreeCatalog::available() { return NoriObjectFactory::isRegistered(NoriObject::EAccel, "octree"); }
 
@@ -26,7 +45,10 @@ std::unique_ptr<Accel> OctreeCatalog::create(const OctreeConfig &config) {
         props.setString("traversal", config.traversal);
         props.setString("intersector", config.intersector);
     }
+    for (const auto &[name, value] : config.properties) setTyped(props, name, value);
     std::unique_ptr<NoriObject> object = NoriObjectFactory::createInstance(NoriObject::EAccel, "octree", props);
+    const std::vector<std::string> unused = props.unusedProperties();
+    if (!unused.empty()) throw std::invalid_argument(fmt::format("the octree has no property '{}'", unused.front()));
     object->activate();
     return std::unique_ptr<Accel>(static_cast<Accel *>(object.release()));
 }
@@ -85,9 +107,19 @@ OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
         if (accepts(probe, error)) m_traversals.push_back(t);
         else if (listed) throw std::invalid_argument(fmt::format("--traversals: the octree rejects '{}': {}", t, error));
     }
+    // --octree-set: checked once on the defaults, then given to every run.
+    auto withProperties = [&] {
+        if (options.octreeProperties.empty()) return;
+        OctreeConfig d = m_defaults;
+        d.properties = options.octreeProperties;
+        std::string error;
+        if (!accepts(d, error)) throw std::invalid_argument("--octree-set: " + error);
+        for (OctreeConfig &c : m_configs) c.properties = options.octreeProperties;
+    };
     if (options.defaultOnly) {  // the lists do not matter
         m_configs.push_back(m_defaults);
         m_configs.back().isDefault = true;
+        withProperties();
         return;
     }
     // Every other list value once, so that a bad value fails before anything is measured.
@@ -155,6 +187,7 @@ OctreeCatalog::OctreeCatalog(const BenchOptions &options) {
         d.isDefault = true;
         m_configs.push_back(d);
     }
+    withProperties();
 }
 
 } // namespace nori::bench
