@@ -3,8 +3,8 @@
 #pragma once
 
 #include <set>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace nori {
