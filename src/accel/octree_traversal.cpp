@@ -194,9 +194,11 @@ struct CellRay {
     struct Empty {};
     [[no_unique_address]] std::conditional_t<kHeld, Held, Empty> held;
     const SlabRay &ray;
+    uint32_t entryHalf[3];  ///< S * neg[a]: where the entry planes start in node.box[a]
     unsigned signs;
 
     explicit CellRay(const SlabRay &s) : ray(s), signs(s.signs) {
+        for (int a = 0; a < 3; ++a) entryHalf[a] = uint32_t(S) * uint32_t(s.neg[a]);
         if constexpr (kHeld)
             for (int a = 0; a < 3; ++a) {
                 held.org[a] = F(s.o[a]);
@@ -229,9 +231,8 @@ struct CellRay {
             t0 = F(mint);
             t1 = F(maxt);
             for (int a = 0; a < 3; ++a) {
-                const uint32_t entryHalf = uint32_t(S) * uint32_t(ray.neg[a]);  // where the entry planes start in box[a]
-                F tn = (F::loadu(box[a] + entryHalf + first) - org(a)) * rcpNear(a);
-                F tf = (F::loadu(box[a] + (S - entryHalf) + first) - org(a)) * rcpFar(a);
+                F tn = (F::loadu(box[a] + entryHalf[a] + first) - org(a)) * rcpNear(a);
+                F tf = (F::loadu(box[a] + (S - entryHalf[a]) + first) - org(a)) * rcpFar(a);
                 t0 = max(tn, t0);  // the second operand on NaN: a NaN never narrows the interval
                 t1 = min(tf, t1);
             }
