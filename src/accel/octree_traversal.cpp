@@ -185,8 +185,8 @@ struct CellRay {
     /// The ray's origin and slab reciprocals: plain nodes (most visits) keep them broadcast, once
     /// per ray; wide nodes broadcast them where they use them (as instruction operands, about
     /// as cheap as registers). Broadcasting them for both widths up front, with the copies the
-    /// compiler spilled, cost a ray that misses the whole tree 40 % of its time, and every ray
-    /// those 8 ns.
+    /// compiler spilled, cost a ray that misses the whole tree a third of its time (20 ns
+    /// against 13), and every ray those 7 ns (bench/README.md, thirteenth round).
     static constexpr bool kHeld = S == 8;
     struct Held {
         F org[3], rcpNear[3], rcpFar[3];
