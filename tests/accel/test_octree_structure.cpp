@@ -557,6 +557,36 @@ TEST(OctreeLeaves, ChunkBoxesStayInsideTheLeaf) {
     }
 }
 
+// A leaf's chunks are cut along the axis that separates its triangles, not blindly along the
+// centroids' longest axis: two clumps of 16 tall blades each (three units tall, standing at
+// heights spread over two units, the clumps 1.5 apart in x). The centroids spread furthest in
+// height, and cut there both halves would hold blades of both clumps, each half as tall and as
+// wide as the whole; cut in x, each chunk is one clump. A ray through one clump then meets all
+// its blades in one chunk and none in the other.
+TEST(OctreeLeaves, ChunksSeparateOverlappingTriangles) {
+    std::vector<std::array<Point3f, 3>> blades;
+    for (int clump = 0; clump < 2; ++clump)
+        for (int k = 0; k < 16; ++k) {
+            const float x = 1.5f * float(clump), h = 2.0f * float(k) / 15.0f + 0.05f * float(clump), z = 0.01f * float(k);
+            blades.push_back({Point3f(x, h, z), Point3f(x + 1.0f, h, z), Point3f(x, h + 3.0f, z)});
+        }
+    std::vector<uint32_t> ids(blades.size());
+    for (uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
+    const uint32_t n = uint32_t(ids.size());
+    TriangleStore store;
+    store.reset(Intersector::Watertight, TriangleStore::leafWords(n));
+    store.setLeaf(0, ids.data(), n, blades);
+    for (int clump = 0; clump < 2; ++clump) {
+        // Through every blade of the clump (0.1 right of its blades' left edges, at height 2.5).
+        TriangleRay ray(Ray3f(Point3f(1.5f * float(clump) + 0.1f, 2.5f, -1.0f), Vector3f(0, 0, 1)));
+        TriangleStore::ChunkAnswers answers;
+        const int hits0 = __builtin_popcount(store.chunkAnswers(1, ray, 0, n, 0, Infinity, answers));
+        const int hits1 = __builtin_popcount(store.chunkAnswers(1, ray, 0, n, 1, Infinity, answers));
+        EXPECT_EQ(hits0 + hits1, 16) << "clump " << clump;
+        EXPECT_TRUE(hits0 == 0 || hits1 == 0) << "clump " << clump << ": " << hits0 << " + " << hits1;
+    }
+}
+
 // A node of at most one chunk (16 triangles) stays a leaf: its test is one chunk, and a split
 // pays only where the children's boxes add up to less than half its box. The default tree of a
 // city (boxes on a ground, where small nodes are many) has no inner node holding 16 or fewer
