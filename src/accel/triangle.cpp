@@ -147,7 +147,7 @@ constexpr float kOverlapMargin = 1.1f;
 /// area wins (the surface area heuristic, MacDonald & Booth 1990). Small triangles on a
 /// surface rarely overlap so; long slanted ones do (grass blades, cut across their height,
 /// leave both halves as tall as the whole; a city's walls). Per primary ray, grass tests 21.5
-/// -> 19.2 chunks, the city 1.76 -> 1.63, the forest 3.54 -> 3.39, pa5 table 1.80 -> 1.70,
+/// -> 19.2 chunks, the city 1.76 -> 1.63, the forest 3.54 -> 3.40, pa5 table 1.80 -> 1.70,
 /// the 203k dragon 0.47 -> 0.46 (diffuse 2.58 -> 2.56). Only the 16s are chosen so, the
 /// chunks a sixteen-lane step tests: the 8s within them gain little (grass nothing) and
 /// would cost build time. \p spare (as long as \p items) holds the best split while others
