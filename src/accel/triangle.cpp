@@ -90,19 +90,11 @@ inline uint32_t localOf(const KeyedVec &k) {
     return i;
 }
 
-/// A triangle's bounds, clipped to its leaf's box, as (x, y, z, 0) vectors.
-struct TriangleBounds {
-    KeyedVec lo, hi;
-};
-
-/// The union of two boxes' bounds; half the surface area of a box.
-struct BoundsUnion {
+/// A box as two (x, y, z, 0) vectors, empty until something is added: a triangle's bounds
+/// clipped to its leaf's box, or the union of several.
+struct Box4 {
     KeyedVec lo = KeyedVec{} + Infinity, hi = KeyedVec{} - Infinity;
-    void add(const TriangleBounds &b) {
-        lo = b.lo < lo ? b.lo : lo;
-        hi = b.hi > hi ? b.hi : hi;
-    }
-    void add(const BoundsUnion &b) {
+    void add(const Box4 &b) {
         lo = b.lo < lo ? b.lo : lo;
         hi = b.hi > hi ? b.hi : hi;
     }
@@ -113,8 +105,8 @@ struct BoundsUnion {
 };
 
 /// The bounds of items [begin, end).
-inline BoundsUnion boundsOf(const KeyedVec *items, uint32_t begin, uint32_t end, const TriangleBounds *bounds) {
-    BoundsUnion u;
+inline Box4 boundsOf(const KeyedVec *items, uint32_t begin, uint32_t end, const Box4 *bounds) {
+    Box4 u;
     for (uint32_t i = begin; i < end; ++i) u.add(bounds[localOf(items[i])]);
     return u;
 }
@@ -152,7 +144,7 @@ constexpr float kOverlapMargin = 1.1f;
 /// chunks a sixteen-lane step tests: the 8s within them gain little (grass nothing) and
 /// would cost build time. \p spare (as long as \p items) holds the best split while others
 /// are tried.
-void orderChunks(KeyedVec *items, uint32_t begin, uint32_t end, uint32_t block, const TriangleBounds *bounds,
+void orderChunks(KeyedVec *items, uint32_t begin, uint32_t end, uint32_t block, const Box4 *bounds,
                  KeyedVec *spare) {
     if (end - begin <= block) return;
     // The centroids' box as BoundingBox3f::expandBy makes it, four lanes at a time (the
@@ -169,8 +161,8 @@ void orderChunks(KeyedVec *items, uint32_t begin, uint32_t end, uint32_t block, 
     KeyedVec *first = items + begin, *kth = items + mid, *last = items + end;
     selectAlong(longest, first, kth, last);
     if (unit == 16) {
-        const BoundsUnion below = boundsOf(items, begin, mid, bounds), above = boundsOf(items, mid, end, bounds);
-        BoundsUnion all = below;
+        const Box4 below = boundsOf(items, begin, mid, bounds), above = boundsOf(items, mid, end, bounds);
+        Box4 all = below;
         all.add(above);
         const KeyedVec e = all.hi - all.lo;
         const float areas = below.halfArea() + above.halfArea();
@@ -207,15 +199,20 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n, cons
     constexpr uint32_t kAhead = 16;
     if (n == 0) return;  // an empty leaf has no block (and an empty store no data to copy into)
     float *rows = m_data.data() + offset;
-    if (n <= 16) {
-        // One chunk, in the given order, without blocks.
-        std::memcpy(rows + size_t(9) * n, ids, sizeof(uint32_t) * n);
-        for (uint32_t i = 0; i < n; ++i) __builtin_prefetch(&vertices[ids[i]]);
+    // The corner rows of the triangles prims[0 .. n - 1], in that order.
+    auto copyCorners = [&](const uint32_t *prims) {
+        for (uint32_t i = 0; i < std::min(n, kAhead); ++i) __builtin_prefetch(&vertices[prims[i]]);
         for (uint32_t i = 0; i < n; ++i) {
-            const std::array<Point3f, 3> &p = vertices[ids[i]];
+            if (i + kAhead < n) __builtin_prefetch(&vertices[prims[i + kAhead]]);
+            const std::array<Point3f, 3> &p = vertices[prims[i]];
             for (int v = 0; v < 3; ++v)
                 for (int c = 0; c < 3; ++c) rows[(3 * v + c) * n + i] = p[v][c];
         }
+    };
+    if (n <= 16) {
+        // One chunk, in the given order, without blocks.
+        std::memcpy(rows + size_t(9) * n, ids, sizeof(uint32_t) * n);
+        copyCorners(ids);
         return;
     }
     // Scratch space reused by every leaf a thread writes (no allocation per leaf): the keys,
@@ -223,7 +220,7 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n, cons
     thread_local std::vector<Keyed> scratch;
     scratch.resize(4 * size_t(n));
     Keyed *items = scratch.data();
-    TriangleBounds *bounds = reinterpret_cast<TriangleBounds *>(scratch.data() + n);
+    Box4 *bounds = reinterpret_cast<Box4 *>(scratch.data() + n);
     KeyedVec *spare = reinterpret_cast<KeyedVec *>(scratch.data() + 3 * size_t(n));
     for (uint32_t i = 0; i < kAhead; ++i) __builtin_prefetch(&vertices[ids[i]]);
     for (uint32_t i = 0; i < n; ++i) {
@@ -242,24 +239,19 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n, cons
             key = 1.5f * (lo + hi);
         }
         items[i] = {key, i};
-        bounds[i] = {KeyedVec{lo.x(), lo.y(), lo.z(), 0.0f}, KeyedVec{hi.x(), hi.y(), hi.z(), 0.0f}};
+        bounds[i].lo = KeyedVec{lo.x(), lo.y(), lo.z(), 0.0f};
+        bounds[i].hi = KeyedVec{hi.x(), hi.y(), hi.z(), 0.0f};
     }
     orderChunks(reinterpret_cast<KeyedVec *>(items), 0, n, blockSize(n), bounds, spare);
     // Ids and corners in that order.
     uint32_t *prims = reinterpret_cast<uint32_t *>(rows + size_t(9) * n);
     for (uint32_t i = 0; i < n; ++i) prims[i] = ids[items[i].local];
-    for (uint32_t i = 0; i < std::min(n, kAhead); ++i) __builtin_prefetch(&vertices[prims[i]]);
-    for (uint32_t i = 0; i < n; ++i) {
-        if (i + kAhead < n) __builtin_prefetch(&vertices[prims[i + kAhead]]);
-        const std::array<Point3f, 3> &p = vertices[prims[i]];
-        for (int v = 0; v < 3; ++v)
-            for (int c = 0; c < 3; ++c) rows[(3 * v + c) * n + i] = p[v][c];
-    }
+    copyCorners(prims);
     // Block boxes, structure of arrays: rows min x, y, z, max x, y, z of nb floats.
     const uint32_t nb = blockCount(n), size = blockSize(n);
     float *boxes = rows + size_t(10) * n;
     for (uint32_t k = 0; k < nb; ++k) {
-        BoundsUnion b;
+        Box4 b;
         for (uint32_t i = size * k; i < std::min(n, size * k + size); ++i) b.add(bounds[items[i].local]);
         for (int a = 0; a < 3; ++a) {
             boxes[size_t(a) * nb + k] = b.lo[a];
