@@ -598,18 +598,26 @@ template <int L, bool kAnyHit = false>
         const TScale sc(r);
         const F shape = M * M * M * abs(invDet);
         const F err = F(0x1p-22f) * ((M + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
-        const VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt) | (valid & exactly);
+        VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt) | (valid & exactly);
         if (any(redo)) {
             // (inside excludes the lanes decided exactly: their t is not the corners'.)
             if constexpr (kAnyHit) {
                 const VMask<L> sure = surelyInRange(valid & inside, t, err, r.mint, maxt);
                 if (any(sure)) return {t, V * invDet, W * invDet, sure};
             }
-            // Lanes decided exactly with no zero volume cross strictly inside too; those with a
-            // zero one cross on an edge, and exactPlaneT's inside test keeps them.
-            const VMask<L> strict = inside | (exactly & (U != 0.0f) & (V != 0.0f) & (W != 0.0f));
-            t = exactPlaneT(redo, strict, r, rows, n, i, t, skipPrim);
-            known = redo & strict;
+            // A triangle square to the ray's dominant axis (its corners' z equal: a wall faced,
+            // a floor seen from above) keeps its float t, whatever the estimate says: t is then z
+            // at any weights, and the weights of a lane not surely missed have one sign, so
+            // fl(fl(sum U_i z) / fl(sum U_i)) lies within a few u of z, itself within 2u of the
+            // exact distance. (Not the lanes decided exactly: their U, V, W are not the corners'.)
+            redo = redo & ~((az == bz) & (az == cz) & ~exactly);
+            if (any(redo)) {
+                // Lanes decided exactly with no zero volume cross strictly inside too; those with
+                // a zero one cross on an edge, and exactPlaneT's inside test keeps them.
+                const VMask<L> strict = inside | (exactly & (U != 0.0f) & (V != 0.0f) & (W != 0.0f));
+                t = exactPlaneT(redo, strict, r, rows, n, i, t, skipPrim);
+                known = redo & strict;
+            }
         }
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
