@@ -553,8 +553,8 @@ template <int L, bool kAnyHit = false>
     // volumes over d[kz], one sign for all three. The bound below is 4x that (for its own
     // rounding), plus 2^-125 for underflow (products and shears of coordinates near 2^-126).
     // (maxAbs: one instruction with AVX-512.)
-    const F M = max(max(maxAbs(ax, ay), maxAbs(bx, by)), maxAbs(cx, cy));
-    const F bound = F(0x1p-18f) * M * (M + max(maxAbs(az, bz), abs(cz))) + F(0x1p-125f);
+    const F M = max(max(maxAbs(ax, ay), maxAbs(bx, by)), maxAbs(cx, cy)), Z = max(maxAbs(az, bz), abs(cz));
+    const F bound = F(0x1p-18f) * M * (M + Z) + F(0x1p-125f);
     const F negBound = F(0.0f) - bound;
     // Surely missed: signs surely mixed, i.e. the largest edge function above the bound and the
     // smallest below minus it (four min/max and two compares instead of six compares and four
@@ -563,8 +563,11 @@ template <int L, bool kAnyHit = false>
     const F hi = max(max(U, V), W), lo = min(min(U, V), W);
     VMask<L> valid = m & ~((hi > bound) & (lo < negBound));
     if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
-    // Surely hit (crossing strictly inside): three signs surely equal. The rest: exact signs.
-    const VMask<L> inside = ((U > bound) & (V > bound) & (W > bound)) | ((U < negBound) & (V < negBound) & (W < negBound));
+    // Surely hit (crossing strictly inside): three signs surely equal, i.e. the smallest edge
+    // function above the bound or the largest below minus it, where none is a NaN (their sum is
+    // a NaN then, and also where they hold both infinities: mixed signs). The rest: exact signs.
+    F det = U + V + W;
+    const VMask<L> inside = ((lo > bound) | (hi < negBound)) & (det == det);
     const VMask<L> unsure = valid & ~inside;
     // The lanes whose exact decision differs from the float signs' (zero counting as either)
     // take the exact volumes; the others keep their float edge functions, so t and u, v stay
@@ -577,8 +580,8 @@ template <int L, bool kAnyHit = false>
         U = select(exactly, e.U, U), V = select(exactly, e.V, V), W = select(exactly, e.W, W);
         valid = m & ~mixedSigns(U, V, W);
         if (!any(valid)) return {U, V, W, valid};
+        det = U + V + W;
     }
-    F det = U + V + W;
     valid = valid & (det != 0.0f);
     const F za = sz * az, zb = sz * bz, zc = sz * cz;
     F T = U * za + V * zb + W * zc;
@@ -594,8 +597,11 @@ template <int L, bool kAnyHit = false>
     // the origin and on slivers, t comes from the plane equation in double instead; so does t of
     // every lane the exact decision overturned (its U, V, W are exact volumes, not the corners').
     if (any(valid)) {
-        const F zmax = max(max(abs(za), abs(zb)), abs(zc));
         const TScale sc(r);
+        // max |sz z_i| = |sz| max |z_i|, the same bits (rounding is monotonic and symmetric). Z
+        // (maxAbs) may drop a NaN at some widths, but a NaN z makes t a NaN, which needs the
+        // double t whatever err is.
+        const F zmax = F(sc.rcpDInf) * Z;
         const F shape = M * M * M * abs(invDet);
         const F err = F(0x1p-22f) * ((M + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
         VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt) | (valid & exactly);
