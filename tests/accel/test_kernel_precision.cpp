@@ -190,6 +190,31 @@ TEST(KernelPrecision, TriangleSquareToTheRayKeepsItsFloatT) {
     EXPECT_EQ(recomputed, 0u);
 }
 
+// An edge function that overflows: corners b and c ~1e20 from the ray, so both products of
+// U = cx by - cy bx exceed the float range and U is inf - inf, a NaN, while V and W (~1e36-1e37)
+// stay finite and clear the error bound (~3e35). The exact U is -1e40: the ray (the z axis)
+// passes beside the triangle, whose three corners all lie in the quadrant x, y > 0. The min and
+// max of the edge functions drop the NaN, so the kernel must not read "surely inside" from them
+// alone; here that would skip the inside test and report a hit at the plane's t. Checked at
+// every width, for closest-hit and any-hit queries, and with the corners' z equal (t then
+// stays the float's NaN) and different (t goes through the plane equation in double).
+TEST(KernelPrecision, OverflowingEdgeFunctionIsNoSureHit) {
+    for (float dz : {0.0f, 1.0f}) {
+        const std::vector<std::array<Point3f, 3>> tri = {
+            {Point3f(1e17f, 1.9e17f, 1.0f), Point3f(2e20f, 3e20f, 1.0f + dz), Point3f(1e20f, 2e20f, 1.0f + 2.0f * dz)}};
+        const TriangleStore store = leafOf(Intersector::Watertight, tri);
+        const Ray3f ray(Point3f(0, 0, 0), Vector3f(0, 0, 1));
+        const TriangleRay tr(ray);
+        for (int width : TriangleStore::laneWidths()) {
+            TriangleStore::ChunkAnswers ans;
+            EXPECT_EQ(store.chunkAnswers(width, tr, 0, 1, 0, ray.maxt, ans), 0u) << "width " << width << ", dz " << dz << ": t " << ans.t[0];
+            Hit hit;
+            EXPECT_FALSE(store.intersectLanes(width, tr, 0, 1, hit)) << "width " << width << ", dz " << dz << ": t " << hit.t;
+            EXPECT_FALSE(store.occludedLanes(width, tr, 0, 1, ray.maxt)) << "width " << width << ", dz " << dz;
+        }
+    }
+}
+
 // The shapes behind the faults, at random: one leaf of huge quads (axis-aligned and tilted),
 // slivers (1:100 to 1:10^4) and ordinary triangles, hit by rays from origins near the world
 // origin aimed at random points of them, and by rays leaving the ground from just above it. Every hit a kernel reports,
