@@ -92,7 +92,8 @@ bool OctreeAccel::occluded(const Ray3f &ray) const {
 }
 
 size_t OctreeAccel::bytes() const {
-    return m_nodes.capacity() * sizeof(OctreeNode) + m_kept.capacity() * sizeof(OctreeKept) + m_triangles.bytes() +
+    return m_nodes.capacity() * sizeof(OctreeNode) + m_kept.capacity() * sizeof(OctreeKept) +
+           m_keptSets.capacity() * sizeof(OctreeKeptSet) + m_triangles.bytes() +
            m_wide.capacity() * (sizeof(OctreeWideNode) + sizeof(uint32_t));
 }
 
@@ -109,6 +110,7 @@ std::vector<AccelStat> OctreeAccel::statistics() const {
     stats.push_back({"kept_refs", double(m_stats.keptRefs), true});
     stats.push_back({"kept_nodes", double(m_stats.keptNodes), true});
     stats.push_back({"kept_groups", double(m_stats.keptGroups), true});
+    stats.push_back({"kept_sets", double(m_keptSets.size()), true});
     stats.push_back({"wide_nodes", double(m_stats.wideNodes), true});
     stats.push_back({"opened_nodes", double(m_stats.openedNodes), true});
     stats.push_back({"bytes", double(bytes()), true});

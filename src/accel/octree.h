@@ -84,9 +84,24 @@ static_assert(sizeof(OctreeWideNode) == 640, "OctreeWideNode must be 10 cache li
 struct OctreeKept {
     float lo[3], hi[3];
     uint32_t offset, count, next;
+    /// In a node's first group, when the node has several: its index in OctreeAccel::m_keptSets
+    /// (the same groups laid out for one box test); kNoSet otherwise.
+    uint32_t set = kNoSet;
+    static constexpr uint32_t kNoSet = ~0u;
     /// At most this many groups per node (the traversal's stack holds them beside the children).
     static constexpr int kMaxGroups = 8;
 };
+
+/// \brief The kept groups of a node that has several, laid out as an OctreeNode's children are
+/// (box[axis][g] the lower bound of group g, box[axis][8 + g] its upper; an unused slot lower
+/// +inf, upper -inf), so that the simd traversals test all their boxes in one eight-lane slab
+/// test instead of one scalar test per group. 256 bytes.
+struct alignas(64) OctreeKeptSet {
+    float box[3][16];
+    uint32_t offset[8], count[8];
+};
+static_assert(sizeof(OctreeKeptSet) == 256, "OctreeKeptSet must be 4 cache lines");
+static_assert(OctreeKept::kMaxGroups <= 8, "OctreeKeptSet holds eight groups");
 
 /// \brief Octree accelerator. Properties: `buildRule` (sah* | count | seed), `maxDepth`,
 /// `leafSize` (a node with fewer triangles is a leaf), `overlap` (bbox | exact*), `traversal`
@@ -228,6 +243,8 @@ private:
     bool intersectSeed(const Ray3f &ray, Hit &hit) const;
     // Wide nodes for the simd traversals (octree_fold.cpp).
     void fold();
+    // m_keptSets from m_kept (octree_layout.cpp).
+    void gatherKeptSets();
 
 
     // Settings.
@@ -246,6 +263,9 @@ private:
     // how many, their box), then the nodes' further groups.
     std::vector<OctreeNode> m_nodes;
     std::vector<OctreeKept> m_kept;
+    /// The nodes with several kept groups, their groups again for the simd traversals' one box
+    /// test (gatherKeptSets(); OctreeKept::set).
+    std::vector<OctreeKeptSet> m_keptSets;
     uint32_t m_rootCount = 0;
     TriangleStore m_triangles;
 

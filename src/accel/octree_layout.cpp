@@ -42,7 +42,8 @@ void flatten(const TempNode &node, uint32_t index, uint32_t offset, uint32_t gro
              {kg.box.max.x(), kg.box.max.y(), kg.box.max.z()},
              offset,
              kg.count,
-             g + 1 < node.keptGroups.size() ? group : 0u};
+             g + 1 < node.keptGroups.size() ? group : 0u,
+             OctreeKept::kNoSet};
         out.store.setLeaf(offset, node.kept.data() + first, kg.count, out.vertices, &kg.box);  // (hits outside: other cells)
         offset += uint32_t(TriangleStore::leafWords(kg.count));
         first += kg.count;
@@ -163,6 +164,8 @@ void OctreeAccel::buildImpl() {
     m_triangles.reset(m_intersector, root->subtreeWords);
     flatten(*root, 0, 0, uint32_t(root->subtreeNodes), Layout{m_nodes, m_kept, m_triangles, vertices.data()});
 
+    gatherKeptSets();
+
     // Statistics over the temporary tree (serial; a few ten thousand nodes).
     m_stats.refs = root->subtreeRefs;
     if (rootIsLeaf) {
@@ -190,6 +193,38 @@ void OctreeAccel::buildImpl() {
         }
     }
     fold();
+}
+
+void OctreeAccel::gatherKeptSets() {
+    m_keptSets.clear();
+    size_t sets = 0;
+    for (size_t i = 0; i < m_nodes.size(); ++i) sets += m_kept[i].count && m_kept[i].next;
+    m_keptSets.reserve(sets);
+    for (size_t i = 0; i < m_nodes.size(); ++i) {
+        OctreeKept &first = m_kept[i];
+        first.set = OctreeKept::kNoSet;
+        if (!first.count || !first.next) continue;
+        OctreeKeptSet set;
+        for (int g = 0; g < 8; ++g) {
+            for (int a = 0; a < 3; ++a) {
+                set.box[a][g] = Infinity;
+                set.box[a][8 + g] = -Infinity;
+            }
+            set.offset[g] = set.count[g] = 0;
+        }
+        int g = 0;
+        for (uint32_t k = uint32_t(i);; k = m_kept[k].next, ++g) {
+            for (int a = 0; a < 3; ++a) {
+                set.box[a][g] = m_kept[k].lo[a];
+                set.box[a][8 + g] = m_kept[k].hi[a];
+            }
+            set.offset[g] = m_kept[k].offset;
+            set.count[g] = m_kept[k].count;
+            if (!m_kept[k].next) break;
+        }
+        first.set = uint32_t(m_keptSets.size());
+        m_keptSets.push_back(set);
+    }
 }
 
 } // namespace nori

@@ -136,6 +136,14 @@ struct SlabRay {
 
 const SlabRay::OctantTable SlabRay::kOctants;
 
+/// Of the groups in bit set \p g (not empty), the one entered first, by \p entries (the lowest
+/// index among equals).
+inline int nearestOf(unsigned g, const float *entries) {
+    int k = __builtin_ctz(g);
+    for (unsigned m = g & (g - 1); m; m &= m - 1)
+        if (entries[__builtin_ctz(m)] < entries[k]) k = __builtin_ctz(m);
+    return k;
+}
 /// Pattern code of an inner-node reference.
 inline uint32_t patternOf(uint32_t ref) { return (ref >> OctreeNode::kPatternShift) & 63u; }
 
@@ -315,6 +323,26 @@ struct CellRay {
         }
     }
 
+    /// The boxes of a node's kept groups (OctreeKeptSet) that the ray enters within [mint, maxt]:
+    /// bit g for group g, its entry distance in \p tnear[g]. The same operations as
+    /// SlabRay::hit on each group's box, so the same answers bit for bit.
+    unsigned enter(const OctreeKeptSet &set, float mint, float maxt, float *tnear) const {
+        static_assert(S == 8);
+        unsigned entered = 0;
+        for (int first = 0; first < 8; first += L) {
+            F t0 = F(mint), t1 = F(maxt);
+            for (int a = 0; a < 3; ++a) {
+                F tn = (F::loadu(set.box[a] + entryHalf[a] + first) - org(a)) * rcpNear(a);
+                F tf = (F::loadu(set.box[a] + (S - entryHalf[a]) + first) - org(a)) * rcpFar(a);
+                t0 = max(tn, t0);
+                t1 = min(tf, t1);
+            }
+            entered |= bits(t0 <= t1) << first;
+            t0.storeu(tnear + first);
+        }
+        return entered;
+    }
+
     /// An OctreeNode's children, reached through a reference with pattern \p code.
     template <bool kEntries = true>
     int push(const OctreeNode &node, uint32_t code, float mint, float maxt, uint32_t *child, uint32_t *count,
@@ -407,29 +435,39 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             // waiting children.
             if (count & OctreeNode::kKeptMask) {
                 const float tc = !descend ? 0.0f : wide ? lane(wideEntry, nearLane) : lane(entry, nearLane);
-                // (A node's first kept group sits at its index among the nodes.)
-                for (uint32_t g = nodeIndexOf(child, count);; g = m_kept[g].next) {
-                    const OctreeKept &group = m_kept[g];
-                    float tk;
-                    if (slab.hit(group, ray.mint, tri.cullLimit(best.t), tk)) {
-                        if (!descend || tk <= tc) {
-                            countedList(true, group.count,
-                                        [&] { return m_triangles.intersect(tri.get(), group.offset, group.count, best); });
-                            if (descend && tc > tri.cullLimit(best.t)) descend = false;  // the nearest child now lies beyond the hit
-                        } else {
-                            int i = sp + pushed;
-                            for (; i > sp && stackT[i - 1] < tk; --i) {
-                                stackChild[i] = stackChild[i - 1];
-                                stackCount[i] = stackCount[i - 1];
-                                stackT[i] = stackT[i - 1];
-                            }
-                            stackChild[i] = group.offset;
-                            stackCount[i] = group.count | kKeptTag;
-                            stackT[i] = tk;
-                            ++pushed;
+                // A group entered at tk: tested now, or waits among the children by entry.
+                auto visitGroup = [&](uint32_t offset, uint32_t n, float tk) {
+                    if (!descend || tk <= tc) {
+                        if (tk > tri.cullLimit(best.t)) return;  // beyond a hit found in an earlier group
+                        countedList(true, n, [&] { return m_triangles.intersect(tri.get(), offset, n, best); });
+                        if (descend && tc > tri.cullLimit(best.t)) descend = false;  // the nearest child now lies beyond the hit
+                    } else {
+                        int i = sp + pushed;
+                        for (; i > sp && stackT[i - 1] < tk; --i) {
+                            stackChild[i] = stackChild[i - 1];
+                            stackCount[i] = stackCount[i - 1];
+                            stackT[i] = stackT[i - 1];
                         }
+                        stackChild[i] = offset;
+                        stackCount[i] = n | kKeptTag;
+                        stackT[i] = tk;
+                        ++pushed;
                     }
-                    if (!group.next) break;
+                };
+                // (A node's first kept group sits at its index among the nodes.)
+                const OctreeKept &group = m_kept[nodeIndexOf(child, count)];
+                float tk;
+                if (group.set == OctreeKept::kNoSet) {  // one group
+                    if (slab.hit(group, ray.mint, tri.cullLimit(best.t), tk)) visitGroup(group.offset, group.count, tk);
+                } else {  // several groups: one box test for all
+                    const OctreeKeptSet &set = m_keptSets[group.set];
+                    alignas(32) float entries[8];
+                    // Nearest first, so that a hit in one culls the groups behind it.
+                    for (unsigned g = simd.enter(set, ray.mint, tri.cullLimit(best.t), entries); g;) {
+                        const int k = nearestOf(g, entries);
+                        g &= ~(1u << k);
+                        visitGroup(set.offset[k], set.count[k], entries[k]);
+                    }
                 }
             }
             sp += pushed;
@@ -472,16 +510,21 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
             g_octreeCounters.wideNodes += wide;
 #endif
             // The node's own large triangles first (the likeliest occluders), if the ray enters their box.
-            if (count & OctreeNode::kKeptMask)
-                for (uint32_t g = nodeIndexOf(child, count);; g = m_kept[g].next) {
-                    const OctreeKept &group = m_kept[g];
+            if (count & OctreeNode::kKeptMask) {
+                auto occludedBy = [&](uint32_t offset, uint32_t n) {
+                    return countedList(true, n, [&] { return m_triangles.occluded(tri.get(), offset, n, ray.maxt); });
+                };
+                const OctreeKept &group = m_kept[nodeIndexOf(child, count)];
+                if (group.set == OctreeKept::kNoSet) {  // one group
                     float tk;
-                    if (slab.hit(group, ray.mint, ray.maxt, tk) && countedList(true, group.count, [&] {
-                            return m_triangles.occluded(tri.get(), group.offset, group.count, ray.maxt);
-                        }))
-                        return true;
-                    if (!group.next) break;
+                    if (slab.hit(group, ray.mint, ray.maxt, tk) && occludedBy(group.offset, group.count)) return true;
+                } else {  // several groups: one box test for all
+                    const OctreeKeptSet &set = m_keptSets[group.set];
+                    alignas(32) float entries[8];
+                    for (unsigned g = simd.enter(set, ray.mint, ray.maxt, entries); g; g &= g - 1)
+                        if (occludedBy(set.offset[__builtin_ctz(g)], set.count[__builtin_ctz(g)])) return true;
                 }
+            }
             uint32_t nearChild, nearCount;
             SimdRay::F entry;
             WideRay::F wideEntry;

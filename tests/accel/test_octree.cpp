@@ -332,7 +332,8 @@ TEST(Octree, StatisticsAreConsistent) {
         std::map<std::string, double> s;
         for (const AccelStat &st : octree->statistics()) s[st.name] = st.value;
         for (const char *key : {"build_ms", "triangles", "internal_nodes", "leaf_nodes", "empty_leaves", "avg_tris_per_leaf",
-                                "max_depth_reached", "triangle_refs", "kept_refs", "kept_nodes", "wide_nodes", "opened_nodes", "bytes"})
+                                "max_depth_reached", "triangle_refs", "kept_refs", "kept_nodes", "kept_groups", "kept_sets", "wide_nodes",
+                                "opened_nodes", "bytes"})
             EXPECT_TRUE(s.count(key)) << rule << ": " << key;
         EXPECT_EQ(s["triangles"], double(mesh.triangleCount())) << rule;
         EXPECT_EQ(s["leaf_nodes"], 7 * s["internal_nodes"] + 1) << rule;  // every inner node has 8 child slots
@@ -343,12 +344,16 @@ TEST(Octree, StatisticsAreConsistent) {
                     1e-9)
             << rule;
         EXPECT_GT(s["max_depth_reached"], 0) << rule;
-        // Nodes (256 bytes and a 4-byte kept offset each) and 40 bytes per reference, plus at
+        // Nodes (256 bytes and a first kept group each), the further kept groups, the kept sets
+        // of nodes with several groups (256 bytes each) and 40 bytes per reference, plus at
         // most 24 bytes of block box per 8 references (TriangleStore::blockSize); wide nodes
         // (640 bytes and the index of the node each stands for).
         const double wide = s["wide_nodes"] * (sizeof(OctreeWideNode) + 4);
-        EXPECT_GE(s["bytes"], s["internal_nodes"] * (sizeof(OctreeNode) + 4) + 40 * s["triangle_refs"] + wide) << rule;
-        EXPECT_LE(s["bytes"], (s["internal_nodes"] + 1) * (sizeof(OctreeNode) + 4) + 43 * s["triangle_refs"] + wide) << rule;
+        const double node = sizeof(OctreeNode) + sizeof(OctreeKept), sets = s["kept_sets"] * sizeof(OctreeKeptSet);
+        const double groups = std::max(0.0, s["kept_groups"] - s["kept_nodes"]) * sizeof(OctreeKept);
+        EXPECT_LE(s["kept_sets"], s["kept_nodes"]) << rule;
+        EXPECT_GE(s["bytes"], s["internal_nodes"] * node + groups + sets + 40 * s["triangle_refs"] + wide) << rule;
+        EXPECT_LE(s["bytes"], (s["internal_nodes"] + 1) * node + groups + sets + 43 * s["triangle_refs"] + wide) << rule;
         // The inspection walk sees the same tree.
         size_t nodes = 0, kept = 0;
         octree_inspect(*octree, [&](const OctreeAccel::NodeView &v) {

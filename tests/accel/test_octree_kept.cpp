@@ -181,3 +181,60 @@ TEST(OctreeKeptGroups, SeveralGroupsPerNodeGiveTheClosestHit) {
     EXPECT_GE(most, 2u);  // the test reaches nodes with several groups
     EXPECT_LE(most, size_t(OctreeKept::kMaxGroups));
 }
+
+// A storey (an office's floor and ceiling, 60 x 40 and 3 apart, with furniture between them):
+// one box around both quads is only 3 high, and the cost model, which takes rays from every
+// direction and counts none that stops before a plane, prices that one group lower than two.
+// But a camera ray along the storey meets the furniture or the floor or the ceiling, and the
+// floor only where it crosses the floor's plane: kept triangles that lie in axis-aligned planes
+// are grouped by plane, each group in a flat box entered exactly where the ray meets the
+// plane (and tested in its turn among the node's children). Without that rule the root kept
+// all four triangles in one group whose box spanned the storey. The answers stay brute
+// force's for closest and any hits, through the kept sets' one box test for all groups.
+TEST(OctreeKeptGroups, AFloorAndACeilingCloseTogetherAreGroupedByPlane) {
+    constexpr float kHeight = 3.0f;
+    MeshData furniture;
+    for (int i = 0; i < 20; ++i)
+        for (int j = 0; j < 12; ++j)
+            append(furniture, scaled(cube(3), 0.3f, Vector3f(1.5f + 3.0f * float(i), 0.3f + 0.1f * float((i + j) % 7), 1.5f + 3.2f * float(j))));
+    Mesh boxes(furniture, "furniture");
+    Mesh floor(quadAt(0.0f, 60.0f, 0.0f, 40.0f, 0.0f), "floor"), ceiling(quadAt(0.0f, 60.0f, 0.0f, 40.0f, kHeight), "ceiling");
+    const std::vector<const Mesh *> meshes{&boxes, &floor, &ceiling};
+    auto octree = buildOctree(meshes);
+    size_t floorGroups = 0, ceilingGroups = 0, spanning = 0;
+    dynamic_cast<const OctreeAccel &>(*octree).forEachNode([&](const OctreeAccel::NodeView &v) {
+        for (const OctreeKept &g : v.keptGroups()) {
+            if (g.lo[1] == 0.0f && g.hi[1] == 0.0f) ++floorGroups;
+            else if (g.lo[1] == kHeight && g.hi[1] == kHeight) ++ceilingGroups;
+            else if (g.lo[1] <= 0.0f && g.hi[1] >= kHeight) ++spanning;
+        }
+    });
+    auto st = statsOf(*octree);
+    std::printf("[kept] storey: %zu floor groups, %zu ceiling groups, %zu spanning both; kept %.0f in %.0f groups, %.0f sets\n",
+                floorGroups, ceilingGroups, spanning, st["kept_refs"], st["kept_groups"], st["kept_sets"]);
+    EXPECT_EQ(spanning, 0u);
+    EXPECT_GE(floorGroups, 1u);
+    EXPECT_GE(ceilingGroups, 1u);
+    EXPECT_GE(st["kept_sets"], 1.0);  // a node holds both: the traversals test their boxes at once
+
+    // Camera rays along the storey, shadow rays from the floor and the furniture upwards.
+    auto brute = makeAccel("brute", PropertyList(), meshes);
+    pcg32 rng(11);
+    auto u = [&] { return float(rng() >> 8) * 0x1p-24f; };
+    std::vector<Ray3f> rays;
+    for (int i = 0; i < 20000; ++i) {
+        Point3f origin, target;
+        if (i % 2 == 0) {
+            origin = Point3f(0.5f, 1.6f, 20.0f + u());
+            target = Point3f(60.0f, kHeight * 1.4f * u() - 0.6f, 40.0f * u());
+        } else {
+            origin = Point3f(60.0f * u(), 0.8f * u(), 40.0f * u());
+            target = Point3f(60.0f * u(), kHeight + 1.0f, 40.0f * u());
+        }
+        rays.emplace_back(origin, target - origin, 1e-4f, i % 3 == 0 ? 1.0f : Infinity);
+    }
+    size_t hits = 0;
+    const size_t differ = differences(*octree, *brute, rays, hits);
+    EXPECT_GT(hits, rays.size() / 2);
+    EXPECT_EQ(differ, 0u);
+}
