@@ -1039,19 +1039,23 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                 if (groupSize[g]) ++used, keptPrice += groupCost(groupBox[g], groupSize[g]);
             if (used > 1) keptPrice += kKeptBoxCost * double(used - 1);
         }
-        // Where every kept triangle lies in an axis-aligned plane (a floor and a ceiling, a
-        // room's walls, the faces of boxes), they are grouped by plane instead, at most
-        // kMaxGroups planes. Such a group's box is flat: a ray enters it exactly where it meets
-        // the plane, so the closest-hit traversal tests it in its turn among the node's
-        // children and culls it behind a nearer hit, and a ray that does not cross the plane
-        // within the group's extent never tests it. The isotropic model above cannot see that
-        // (it counts no ray that stops before a plane, and prices a floor and a ceiling 3 m
-        // apart in one box lower than in two), so the node keeps the search's price.
-        // Measured against the search's groups (bench/README.md, seventeenth round): office
-        // primary rays 0.84, room 0.90, shadow rays in the room 0.86, the rest within 2-5 %.
+        // Where every kept triangle lies in an axis-aligned plane on the shell of the node's box
+        // (a storey's floor and ceiling, a room's walls, a ground and a light above it), they
+        // are grouped by plane instead, one group per face of the box. Such a group's box is
+        // flat: a ray enters it exactly where it meets the plane, so the closest-hit traversal
+        // tests it in its turn among the node's children and culls it behind a nearer hit
+        // (the content inside the shell lies in front of the far faces), and a ray that does
+        // not cross the plane within the group's extent never tests it. One box around the
+        // faces is the node's own, entered first by every ray. The isotropic model above
+        // cannot see that (it counts no ray that stops before a plane, and prices a floor and
+        // a ceiling 3 m apart lower in one box than in two), so the node keeps the search's
+        // price. Planes inside the box (the faces of a tower's fins) stay as the search
+        // grouped them: their groups only multiplied the box and list tests of any-hit rays,
+        // and the slots of the folded tree's wide nodes (bench/README.md, seventeenth round).
+        static_assert(OctreeKept::kMaxGroups >= 6, "a group for each face of a node's box");
         if (best > 1) {
-            int planeAxis[OctreeKept::kMaxGroups];
-            float planeAt[OctreeKept::kMaxGroups];
+            int planeAxis[6];
+            float planeAt[6];
             int planes = 0;
             thread_local std::vector<uint8_t> byPlane;
             byPlane.assign(best, 0);
@@ -1060,10 +1064,10 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                 const Ref &r = ids[candidates[k].i];
                 const int a = r.lo[0] == r.hi[0] ? 0 : r.lo[1] == r.hi[1] ? 1 : r.lo[2] == r.hi[2] ? 2 : -1;
                 if (a < 0) break;
+                if (r.lo[a] != box.min[a] && r.lo[a] != box.max[a]) break;  // not on the node box's shell
                 int g = 0;
                 while (g < planes && !(planeAxis[g] == a && planeAt[g] == r.lo[a])) ++g;
-                if (g == planes) {
-                    if (planes == OctreeKept::kMaxGroups) break;
+                if (g == planes) {  // (at most six: the faces of the box)
                     planeAxis[planes] = a;
                     planeAt[planes] = r.lo[a];
                     ++planes;

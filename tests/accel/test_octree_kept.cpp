@@ -187,10 +187,11 @@ TEST(OctreeKeptGroups, SeveralGroupsPerNodeGiveTheClosestHit) {
 // direction and counts none that stops before a plane, prices that one group lower than two.
 // But a camera ray along the storey meets the furniture or the floor or the ceiling, and the
 // floor only where it crosses the floor's plane: kept triangles that lie in axis-aligned planes
-// are grouped by plane, each group in a flat box entered exactly where the ray meets the
-// plane (and tested in its turn among the node's children). Without that rule the root kept
-// all four triangles in one group whose box spanned the storey. The answers stay brute
-// force's for closest and any hits, through the kept sets' one box test for all groups.
+// on the shell of the node's box are grouped by plane, each group in a flat box entered
+// exactly where the ray meets the plane (and tested in its turn among the node's children).
+// Without that rule the root kept all four triangles in one group whose box spanned the
+// storey. The answers stay brute force's for closest and any hits, through the kept sets'
+// one box test for all groups.
 TEST(OctreeKeptGroups, AFloorAndACeilingCloseTogetherAreGroupedByPlane) {
     constexpr float kHeight = 3.0f;
     MeshData furniture;
