@@ -133,7 +133,10 @@ static_assert(OctreeKept::kMaxGroups <= 8, "OctreeKeptSet holds eight groups");
 /// triangles sixteen at a time, nearest chunk first (TriangleStore). A node's kept triangles
 /// are tested only by rays that enter their bounding box: by `simd` right away if the box comes
 /// before the node's nearest child, else when the box's turn comes among the waiting children
-/// (so that a closer hit found meanwhile culls them); by the any-hit traversal first.
+/// (so that a closer hit found meanwhile culls them); by the any-hit traversal first. A node's
+/// several kept groups (large triangles in separate places, or one group per face of the node's
+/// box where the kept triangles lie on its shell: a storey's floor and ceiling, tested each
+/// where the ray meets it) get one eight-lane box test for all (OctreeKeptSet).
 class OctreeAccel : public Accel {
 public:
     /// \brief How children are visited.
