@@ -931,6 +931,11 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     std::vector<TempNode::KeptGroup> keptGroups;
     double keptPrice = 0.0;  // the cost model's price of the kept groups (the search's, see below)
     if (sah && n > 16) {
+        // A candidate's bounding box clipped to the node's box (what lies outside is hit in other cells).
+        auto clippedBox = [&](const Ref &r) {
+            return BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]).cwiseMax(box.min),
+                                 Point3f(r.hi[0], r.hi[1], r.hi[2]).cwiseMin(box.max));
+        };
         const double w = Cost::kChunk / 16.0;
         const double descent = std::max(1.0, std::log(double(n) / 16.0) / std::log(8.0)) * Cost::kNode;
         double p[8];
@@ -989,8 +994,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             copies += candidates[k].copies;
             hit += candidates[k].hit;
             const Ref &r = ids[candidates[k].i];
-            const BoundingBox3f b(Point3f(r.lo[0], r.lo[1], r.lo[2]).cwiseMax(box.min),
-                                  Point3f(r.hi[0], r.hi[1], r.hi[2]).cwiseMin(box.max));
+            const BoundingBox3f b = clippedBox(r);
             int choice = groupCount;
             double delta = groupCount < OctreeKept::kMaxGroups ? groupCost(b, 1) : Infinity, choiceCost = delta;
             if (groupCount > 0) delta += kKeptBoxCost;  // a further group's box test
@@ -1030,8 +1034,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             size_t groupSize[OctreeKept::kMaxGroups] = {};
             for (size_t k = 0; k < best; ++k) {
                 const Ref &r = ids[candidates[k].i];
-                groupBox[groupOf[k]].expandBy(BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]).cwiseMax(box.min),
-                                                            Point3f(r.hi[0], r.hi[1], r.hi[2]).cwiseMin(box.max)));
+                groupBox[groupOf[k]].expandBy(clippedBox(r));
                 ++groupSize[groupOf[k]];
             }
             int used = 0;
@@ -1089,8 +1092,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                     if (groupOf[k] != g) continue;
                     const Ref &r = ids[candidates[k].i];
                     kept.push_back(r.id & ~kLooseBit);
-                    group.box.expandBy(BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]).cwiseMax(box.min),
-                                                     Point3f(r.hi[0], r.hi[1], r.hi[2]).cwiseMin(box.max)));
+                    group.box.expandBy(clippedBox(r));
                     masks[candidates[k].i] = 0;
                     ++group.count;
                 }
