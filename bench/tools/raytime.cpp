@@ -2,8 +2,10 @@
 /// \brief nori-raytime: builds the default octree of a scene and traces one of the bench's ray
 /// sets (primary, diffuse or shadow) repeatedly, for a profiler (perf, callgrind): no Embree.
 /// Environment: NORI_LEAFSIZE=N sets leafSize; NORI_AB=PROP times the octree with the boolean
-/// property PROP on against off, side by side in one run, and prints the ratio.
+/// property PROP on against off, side by side in one run, and prints the ratio; NORI_EMBREE=1
+/// times Embree's default mode on the same rays instead of the octree (a peer for a profiler).
 #include "accel/octree.h"
+#include "embree_accel.h"
 #include "tool_main.h"
 #include <ray_sets.h>
 #include <scene_geometry.h>
@@ -104,12 +106,22 @@ int run(int argc, char **argv) {
                     name, ns[1] / (2.0 * rays.size() * repeats), ns[0] / ns[1], found[0] == found[1] ? "same hits" : "HITS DIFFER");
         return found[0] == found[1] ? 0 : 1;
     }
+    // NORI_EMBREE: the same rays through Embree's default mode (one thread).
+    std::unique_ptr<Accel> embree;
+    if (std::getenv("NORI_EMBREE")) {
+        PropertyList ep;
+        ep.setInteger("threads", 1);
+        embree = std::make_unique<bench::EmbreeAccel>(ep);
+        for (const Mesh *m : meshes) embree->addMesh(m);
+        embree->build();
+    }
+    const Accel &timed = embree ? *embree : static_cast<const Accel &>(octree);
     size_t hits = 0;
     auto t2 = cpuNs();
     for (int k = 0; k < repeats; ++k)
         for (const Ray3f &r : rays) {
             Hit h;
-            hits += shadow ? octree.occluded(r) : octree.intersect(r, h);
+            hits += shadow ? timed.occluded(r) : timed.intersect(r, h);
         }
     auto t3 = cpuNs();
     const double ns = (t3 - t2) / double(rays.size()) / repeats;
