@@ -1,6 +1,7 @@
 /// \file bench_main.cpp
 /// \brief nori-bench: the seed's Table 1 for any mesh, side by side with Embree 3.
 #include "bench_options.h"
+#include "heap_policy.h"
 #include "bench_runner.h"
 #include "json_writer.h"
 #include "markdown_writer.h"
@@ -114,6 +115,7 @@ int runBench(const BenchOptions &options, const std::string &command) {
 } // namespace
 
 int main(int argc, char **argv) {
+    keepFreedMemoryForReuse();
     CliApp cli("nori-bench", "nori-bench: the seed's Table 1 for any mesh, side by side with Embree 3.");
     BenchOptions options;
     OptionParser::declare(cli, options);

@@ -3,6 +3,7 @@
 /// one line on stderr and exit status 1, not an abort.
 #pragma once
 
+#include "../heap_policy.h"
 #include <cstdio>
 #include <exception>
 
@@ -11,6 +12,7 @@ namespace nori::bench {
 /// Runs \p run(argc, argv) and returns its status, or 1 after printing what it threw.
 template <typename Run>
 int toolMain(int argc, char **argv, Run run) {
+    keepFreedMemoryForReuse();
     try {
         return run(argc, argv);
     } catch (const std::exception &e) {
