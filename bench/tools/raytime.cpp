@@ -1,6 +1,6 @@
 /// \file raytime.cpp
 /// \brief nori-raytime: builds the default octree of a scene and traces one of the bench's ray
-/// sets (primary, diffuse or shadow) repeatedly, for a profiler (perf, callgrind): no Embree.
+/// sets (primary, diffuse or shadow) repeatedly, for a profiler (perf, callgrind).
 /// Environment: NORI_LEAFSIZE=N sets leafSize; NORI_AB=PROP times the octree with the boolean
 /// property PROP on against off, side by side in one run, and prints the ratio; NORI_EMBREE=1
 /// times Embree's default mode on the same rays instead of the octree (a peer for a profiler).
@@ -125,7 +125,7 @@ int run(int argc, char **argv) {
         }
     auto t3 = cpuNs();
     const double ns = (t3 - t2) / double(rays.size()) / repeats;
-    std::printf("build %.1f ms, %zu %s rays x %d, %.1f %% hit, %.1f ns/ray\n",
+    std::printf("%sbuild %.1f ms, %zu %s rays x %d, %.1f %% hit, %.1f ns/ray\n", embree ? "embree: octree " : "",
                 (t1 - t0) * 1e-6, rays.size(), set.c_str(), repeats,
                 100.0 * double(hits) / double(rays.size()) / repeats, ns);
     if (argc > 5)
