@@ -535,13 +535,17 @@ template <int L, bool kAnyHit = false>
                                                  uint32_t skipPrim) {
     using F = VFloat<L>;
     const F ox = r.o[r.kx], oy = r.o[r.ky], oz = r.o[r.kz], sx = r.sx, sy = r.sy, sz = r.sz;
-    F az = loadRow(rows, n, r.kz, i, m) - oz;
-    F bz = loadRow(rows, n, 3 + r.kz, i, m) - oz;
-    F cz = loadRow(rows, n, 6 + r.kz, i, m) - oz;
+    // The ray's axes' rows of p0 (those of p1 and p2 lie 3n and 6n further): three products
+    // for the nine row addresses, not one per row.
+    const size_t s3 = size_t(3) * n;
+    const float *X = rows + size_t(r.kx) * n + i, *Y = rows + size_t(r.ky) * n + i, *Zr = rows + size_t(r.kz) * n + i;
+    F az = F::load(Zr, m) - oz;
+    F bz = F::load(Zr + s3, m) - oz;
+    F cz = F::load(Zr + 2 * s3, m) - oz;
     // Sheared corners.
-    const F ax = (loadRow(rows, n, r.kx, i, m) - ox) - sx * az, ay = (loadRow(rows, n, r.ky, i, m) - oy) - sy * az;
-    const F bx = (loadRow(rows, n, 3 + r.kx, i, m) - ox) - sx * bz, by = (loadRow(rows, n, 3 + r.ky, i, m) - oy) - sy * bz;
-    const F cx = (loadRow(rows, n, 6 + r.kx, i, m) - ox) - sx * cz, cy = (loadRow(rows, n, 6 + r.ky, i, m) - oy) - sy * cz;
+    const F ax = (F::load(X, m) - ox) - sx * az, ay = (F::load(Y, m) - oy) - sy * az;
+    const F bx = (F::load(X + s3, m) - ox) - sx * bz, by = (F::load(Y + s3, m) - oy) - sy * bz;
+    const F cx = (F::load(X + 2 * s3, m) - ox) - sx * cz, cy = (F::load(Y + 2 * s3, m) - oy) - sy * cz;
     // Scaled barycentrics: U weighs p0, V weighs p1, W weighs p2.
     F U = cx * by - cy * bx;
     F V = ax * cy - ay * cx;
