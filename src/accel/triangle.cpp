@@ -659,10 +659,8 @@ inline bool narrowSpan(uint32_t first, uint32_t end) {
 /// Closest hit over triangles [first, end) of a leaf (at most 16) in steps of L lanes: the
 /// lexicographic minimum of (t, prim), so ties resolve the same way at every width.
 template <int L>
-bool spanIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end,
-                   Hit &best) {
-    if constexpr (L > 8)
-        if (narrowSpan<L>(first, end)) return spanIntersect<8>(kind, ray, rows, n, first, end, best);
+bool spanSteps(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end,
+               Hit &best) {
     bool found = false;
     NORI_TRIANGLE_COUNT(chunks, 1);
     for (uint32_t i = first; i < end; i += L) {
@@ -690,6 +688,17 @@ bool spanIntersect(Intersector kind, const TriangleRay &ray, const float *rows, 
         }
     }
     return found;
+}
+
+/// spanSteps() at L lanes, or at 8 where narrowSpan() says so. Decided in the caller (inline):
+/// inside the step loop's function the test came after its prologue, and a narrow span paid a
+/// second call with a second prologue (a large stack frame, aligned for the vector spills).
+template <int L>
+[[gnu::always_inline]] inline bool spanIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n,
+                                                 uint32_t first, uint32_t end, Hit &best) {
+    if constexpr (L > 8)
+        if (narrowSpan<L>(first, end)) return spanSteps<8>(kind, ray, rows, n, first, end, best);
+    return spanSteps<L>(kind, ray, rows, n, first, end, best);
 }
 
 /// Entry distances of the ray into block boxes 16g .. 16g + 15 of a leaf (tn[j] for block
@@ -767,14 +776,21 @@ bool leafIntersect(Intersector kind, const TriangleRay &ray, const float *rows, 
 /// Any hit among triangles [first, end) (at most 16) with t in [ray.mint, maxt], in steps of L
 /// lanes.
 template <int L>
-bool spanOccluded(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end,
-                  float maxt) {
-    if constexpr (L > 8)
-        if (narrowSpan<L>(first, end)) return spanOccluded<8>(kind, ray, rows, n, first, end, maxt);
+bool occludedSteps(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end,
+                   float maxt) {
     NORI_TRIANGLE_COUNT(chunks, 1);
     for (uint32_t i = first; i < end; i += L)
         if (any(testStep<L, true>(kind, ray, rows, n, i, end, maxt).hit)) return true;
     return false;
+}
+
+/// occludedSteps() at L lanes, or at 8 where narrowSpan() says so (as spanIntersect()).
+template <int L>
+[[gnu::always_inline]] inline bool spanOccluded(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n,
+                                                uint32_t first, uint32_t end, float maxt) {
+    if constexpr (L > 8)
+        if (narrowSpan<L>(first, end)) return occludedSteps<8>(kind, ray, rows, n, first, end, maxt);
+    return occludedSteps<L>(kind, ray, rows, n, first, end, maxt);
 }
 
 /// Any hit in the leaf with t in [ray.mint, maxt].
