@@ -132,6 +132,8 @@ int run(int argc, char **argv) {
             g_octreeCounters = {};
             std::vector<uint64_t> visits(1u << 24, 0);
             g_octreeCounters.nodeVisits = &visits;
+            std::vector<uint64_t> emptyVisits(1u << 24, 0);
+            g_octreeCounters.emptyVisits = &emptyVisits;
             size_t hits = 0;
             for (const Ray3f &r : rays) {
                 Hit h;
@@ -153,11 +155,14 @@ int run(int argc, char **argv) {
             std::printf("\n");
             // Visits by depth, and by the node's filled children.
             std::vector<double> byDepth(40, 0.0), byFilled(OctreeWideNode::kSlots + 1, 0.0);
+            std::vector<double> emptyByDepth(40, 0.0), emptyByFilled(OctreeWideNode::kSlots + 1, 0.0);
             octree.forEachNode([&](const OctreeAccel::NodeView &v) {
                 int filled = 0;
                 for (int c = 0; c < 8; ++c) filled += v.node.box[0][c] <= v.node.box[0][8 + c];
                 byDepth[std::min(v.depth, 39)] += double(visits[v.index]);
                 byFilled[filled] += double(visits[v.index]);
+                emptyByDepth[std::min(v.depth, 39)] += double(emptyVisits[v.index]);
+                emptyByFilled[filled] += double(emptyVisits[v.index]);
             });
             std::printf("         node visits by depth:");
             for (int d = 0; d < 40; ++d)
@@ -166,6 +171,11 @@ int run(int argc, char **argv) {
             for (int f = 0; f <= OctreeWideNode::kSlots; ++f) std::printf(" %d:%.2f", f, byFilled[f] / n);
             std::printf("\n         by children entered:");
             for (int f = 0; f <= OctreeWideNode::kSlots; ++f) std::printf(" %d:%.2f", f, double(g_octreeCounters.entered[f]) / n);
+            std::printf("\n         entering no child, by depth:");
+            for (int d = 0; d < 40; ++d)
+                if (emptyByDepth[d] > 0) std::printf(" %d:%.2f", d, emptyByDepth[d] / n);
+            std::printf("\n         entering no child, by filled children:");
+            for (int f = 0; f <= 8; ++f) std::printf(" %d:%.2f", f, emptyByFilled[f] / n);
             std::printf("\n");
         };
         report("primary", primary, false);

@@ -302,6 +302,7 @@ struct OctreeCounters {
     /// If set: visits per inner node (by index), and per visit the children the ray entered
     /// (1..16, 0: none), for per-depth reports.
     std::vector<uint64_t> *nodeVisits = nullptr;
+    std::vector<uint64_t> *emptyVisits = nullptr;  ///< if set: per inner node, the visits that entered no child
     uint64_t entered[OctreeWideNode::kSlots + 1] = {};
 };
 extern OctreeCounters g_octreeCounters;

@@ -448,6 +448,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
                                           stackCount + sp, stackT + sp, nearChild, nearCount, entry, nearLane);
 #ifdef NORI_OCTREE_COUNTERS
             if (g_octreeCounters.nodeVisits) ++(*g_octreeCounters.nodeVisits)[nodeIndexOf(child, count)];
+            if (g_octreeCounters.emptyVisits && pushed < 0) ++(*g_octreeCounters.emptyVisits)[nodeIndexOf(child, count)];
             g_octreeCounters.wideNodes += wide;
             ++g_octreeCounters.entered[pushed + 1];
 #endif
