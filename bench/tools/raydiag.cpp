@@ -128,11 +128,13 @@ int run(int argc, char **argv) {
         std::vector<Ray3f> diffuseSet = diffuseRays(primary, octHit, table, 0x62656e63u);
         std::vector<Ray3f> shadowSet = lightShadowRays(primary, octHit, table, lightAbove(table.bbox()));
         for (const AccelStat &s : octree.statistics()) std::printf("%s %g\n", s.name.c_str(), s.value);
+        // Per-node counters, one slot per inner node (indices as in forEachNode).
+        size_t innerNodes = 0;
+        octree.forEachNode([&](const OctreeAccel::NodeView &v) { innerNodes = std::max<size_t>(innerNodes, v.index + 1); });
         auto report = [&](const char *name, const std::vector<Ray3f> &rays, bool shadow) {
             g_octreeCounters = {};
-            std::vector<uint64_t> visits(1u << 24, 0);
+            std::vector<uint64_t> visits(innerNodes, 0), emptyVisits(innerNodes, 0);
             g_octreeCounters.nodeVisits = &visits;
-            std::vector<uint64_t> emptyVisits(1u << 24, 0);
             g_octreeCounters.emptyVisits = &emptyVisits;
             size_t hits = 0;
             for (const Ray3f &r : rays) {
