@@ -56,10 +56,9 @@ static_assert(sizeof(OctreeNode) == 256, "OctreeNode must be 4 cache lines");
 /// from two or more levels of the octree below one node, tested in one 16-lane slab test
 /// instead of a chain of 8-child tests (a wide BVH node's idea, Wald et al. 2008, "Getting rid
 /// of packets", applied to an octree's cells). The cells are the leaves of the subtree the
-/// fold opened, so their boxes are the octree's own child boxes, bit for bit. The node's own
-/// kept groups, and those of every node it opened, are slots too (each a list of triangles,
-/// like a leaf, in the group's box), tested in the same 16-lane test as the cells; every node
-/// with kept groups becomes wide for that alone. 768 bytes.
+/// fold opened, so their boxes are the octree's own child boxes, bit for bit; a node it opened
+/// that kept triangles of its own brings each kept group as one more slot (a list of triangles,
+/// like a leaf, in the group's box), in front of that node's cells. 640 bytes.
 struct alignas(64) OctreeWideNode {
     static constexpr int kSlots = 16;
     /// box[axis][s] is the lower bound of slot s, box[axis][kSlots + s] its upper bound; an unused
@@ -68,19 +67,13 @@ struct alignas(64) OctreeWideNode {
     /// As in OctreeNode (inner children may again be wide: kWide).
     uint32_t child[kSlots];
     uint32_t count[kSlots];
-    /// order[signs][j]: the slot the closest-hit traversal's lane j tests for a ray whose
-    /// direction has sign bits \p signs (bit a: d[a] < 0): back to front, the nearest in the last
-    /// lane. Within each opened node its children come in the octant order (OctreeNode::Pattern),
-    /// so this is the same front-to-back order the unfolded tree visits; an opened node's kept
-    /// groups come just before its front cell, the node's own behind every cell (a ground or a
-    /// room's walls: a hit in a nearer cell culls them by their entry distance, as the plain
-    /// traversal's entry-ordered test of kept groups does; in front, every ray tested them).
+    /// order[signs][j]: the slot the traversal's lane j tests for a ray whose direction has
+    /// sign bits \p signs (bit a: d[a] < 0): back to front, the nearest in the last lane. Within each
+    /// opened node its children come in the octant order (OctreeNode::Pattern), so this is the
+    /// same front-to-back order the unfolded tree visits.
     uint8_t order[8][kSlots];
-    /// The same for the any-hit query, which culls nothing: every kept group, the node's own too,
-    /// before its node's front cell (large triangles are the likeliest occluders).
-    uint8_t anyOrder[8][kSlots];
 };
-static_assert(sizeof(OctreeWideNode) == 768, "OctreeWideNode must be 12 cache lines");
+static_assert(sizeof(OctreeWideNode) == 640, "OctreeWideNode must be 10 cache lines");
 
 /// \brief One group of an inner node's kept triangles: where they are (word offset in the
 /// TriangleStore), how many, and their bounding box, so that a ray that does not enter the
@@ -140,8 +133,7 @@ static_assert(OctreeKept::kMaxGroups <= 8, "OctreeKeptSet holds eight groups");
 /// triangles sixteen at a time, nearest chunk first (TriangleStore). A node's kept triangles
 /// are tested only by rays that enter their bounding box: by `simd` right away if the box comes
 /// before the node's nearest child, else when the box's turn comes among the waiting children
-/// (so that a closer hit found meanwhile culls them); by the any-hit traversal first. On the
-/// folded tree they are slots of the node's wide node instead (OctreeWideNode::order). A node's
+/// (so that a closer hit found meanwhile culls them); by the any-hit traversal first. A node's
 /// several kept groups (large triangles in separate places, or one group per face of the node's
 /// box where the kept triangles lie on its shell: a storey's floor and ceiling, tested each
 /// where the ray meets it) get one eight-lane box test for all (OctreeKeptSet).
@@ -299,9 +291,6 @@ private:
 /// \brief What the simd traversals did, summed over all queries since the last reset (a
 /// measuring build only: -DNORI_OCTREE_COUNTERS; single-threaded use).
 struct OctreeCounters {
-    /// A kept list among leaves (waiting on the stack, or a wide node's slot) carries this bit
-    /// in its count, so that it is counted as a kept list.
-    static constexpr uint32_t kKeptTag = 0x40000000u;
     uint64_t nodes = 0, keptTris = 0, leaves = 0, leafTris = 0;
     uint64_t wideNodes = 0;  ///< of nodes, the folded tree's wide ones
     uint64_t chunks = 0, exactT = 0;  ///< triangle spans tested (up to 16: a small list, a block or a pair of blocks), t recomputed in double (lanes)

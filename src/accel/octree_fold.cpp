@@ -3,13 +3,11 @@
 /// children are themselves inner nodes that most rays entering the node also enter (a node
 /// whose cells are all filled: a mesh's surface, a city's blocks), visiting them one after
 /// the other costs a node test each; folding opens such children into their parent, so that
-/// one 16-lane test (OctreeWideNode) decides the cells of two or more levels at once. A node
-/// with kept groups of its own becomes wide too, even with no child to open: its groups become
-/// slots beside its children, one 16-lane test instead of the node's test and a scalar box test
-/// per group (bench/README.md, twenty-first round).
+/// one 16-lane test (OctreeWideNode) decides the cells of two or more levels at once.
 /// The cells, boxes, leaves and kept lists are the octree's own: only the way the traversal
-/// reaches them changes (kept groups become slots of the wide node, each a triangle list in its
-/// own box), and the answers stay the same bit for bit (tests/accel/test_octree_fold.cpp).
+/// reaches them changes (the kept groups of an opened node become slots of the wide node, each
+/// a triangle list in its own box, as the plain traversal tests them: by entry distance), and
+/// the answers stay the same bit for bit (tests/accel/test_octree_fold.cpp).
 /// Folding works in place: a plain node that stays refers to a folded child with kWide; the
 /// nodes opened into wide nodes stay where they are, for forEachNode and the other traversals.
 #include "octree.h"
@@ -33,13 +31,6 @@ constexpr float kWideGain = 0.5f;
 /// Levels a wide node may span below its own: every level adds three bits to the order
 /// keys (Slot::key), which must fit 64 bits.
 constexpr int kMaxFoldLevels = 20;
-
-/// A measuring build tags kept slots (OctreeCounters::kKeptTag) so that they are counted as kept lists.
-#ifdef NORI_OCTREE_COUNTERS
-constexpr uint32_t kKeptTag = OctreeCounters::kKeptTag;
-#else
-constexpr uint32_t kKeptTag = 0;
-#endif
 
 float surfaceArea(const float lo[3], const float hi[3]) {
     const float x = hi[0] - lo[0], y = hi[1] - lo[1], z = hi[2] - lo[2];
@@ -72,8 +63,7 @@ struct Slot {
     /// xor the octants along its path from the folded node, three bits per level.
     uint64_t key[8];
     int levels;  ///< how many levels below the folded node the cell's parent lies
-    bool kept;   ///< a kept group (a list of triangles, like a leaf)
-    bool own;    ///< a kept group of the wide node's own node
+    bool kept;   ///< a kept group of an opened node (a list of triangles, like a leaf)
 
     bool openable() const { return (count & OctreeNode::kInner) && levels < kMaxFoldLevels; }
 };
@@ -113,7 +103,6 @@ int keptGroups(const std::vector<OctreeKept> &kept, uint32_t index, uint32_t ref
 void appendChildren(const std::vector<OctreeNode> &nodes, const std::vector<OctreeKept> &kept, uint32_t index,
                     uint32_t ref, const Slot *parent, SlotList &out) {
     const OctreeNode &node = nodes[index];
-    const uint8_t *octant = kOctants.octant[patternOf(ref)];
     if (ref & OctreeNode::kKeptMask)
         for (uint32_t g = index;; g = kept[g].next) {
             Slot &s = out.items[out.n++];
@@ -125,10 +114,10 @@ void appendChildren(const std::vector<OctreeNode> &nodes, const std::vector<Octr
             }
             s.levels = parent ? parent->levels + 1 : 0;
             s.kept = true;
-            s.own = !parent;
             for (unsigned signs = 0; signs < 8; ++signs) s.key[signs] = parent ? parent->key[signs] << 3 : 0u;
             if (!kept[g].next) break;
         }
+    const uint8_t *octant = kOctants.octant[patternOf(ref)];
     for (int c = 0; c < 8; ++c) {
         if (isEmpty(node, c)) continue;
         Slot &s = out.items[out.n++];
@@ -140,7 +129,6 @@ void appendChildren(const std::vector<OctreeNode> &nodes, const std::vector<Octr
         }
         s.levels = parent ? parent->levels + 1 : 0;
         s.kept = false;
-        s.own = false;
         for (unsigned signs = 0; signs < 8; ++signs)
             s.key[signs] = (parent ? parent->key[signs] << 3 : 0u) | (uint32_t(c) ^ octant[signs]);
     }
@@ -167,13 +155,9 @@ public:
             const uint32_t r = m_nodes[index].count[c];
             openable |= bool(r & OctreeNode::kInner);
         }
-        // A node with kept groups of its own becomes wide even with nothing to open: its groups
-        // become slots (at most eight, beside at most eight children), so one 16-lane test
-        // decides them with its cells, instead of a scalar box test per group after the node's.
-        const bool ownKept = ref & OctreeNode::kKeptMask;
-        if (!openable && !ownKept) return keepPlain(index, ref, child);
+        if (!openable) return keepPlain(index, ref, child);
         SlotList slots;
-        appendChildren(m_nodes, m_kept, index, ref, nullptr, slots);
+        appendChildren(m_nodes, m_kept, index, ref & ~OctreeNode::kKeptMask, nullptr, slots);  // (its own kept groups stay its own)
 
         // Open the largest cells first, while they fit in sixteen slots.
         float lo[3] = {Infinity, Infinity, Infinity}, hi[3] = {-Infinity, -Infinity, -Infinity};
@@ -209,7 +193,7 @@ public:
             ++opens;
         }
 
-        if (gain < kWideGain && !ownKept) return keepPlain(index, ref, child);
+        if (gain < kWideGain) return keepPlain(index, ref, child);
         opened += opens;
         child = uint32_t(m_wide.size());
         m_wide.emplace_back();
@@ -253,33 +237,28 @@ private:
                 node.box[a][OctreeWideNode::kSlots + s] = used ? slots[size_t(s)].hi[a] : -Infinity;
             }
             node.child[s] = used ? slots[size_t(s)].child : 0u;
-            node.count[s] = used ? slots[size_t(s)].count | (slots[size_t(s)].kept ? kKeptTag : 0u) : 0u;
+            node.count[s] = used ? slots[size_t(s)].count : 0u;
         }
         // Keys of cells at different levels are compared aligned to the deepest: no cell's path
         // is a prefix of another's (cells are the leaves of the opened subtree), so the first
         // three bits that differ decide, at the node where the two paths part.
         int deepest = 0;
         for (int s = 0; s < n; ++s) deepest = std::max(deepest, slots[s].levels);
-        // Two tables: order for the closest hit, anyOrder for the any-hit query (OctreeWideNode).
-        for (int any = 0; any < 2; ++any)
-            for (unsigned signs = 0; signs < 8; ++signs) {
-                uint64_t key[OctreeWideNode::kSlots];
-                for (int s = 0; s < OctreeWideNode::kSlots; ++s) {
-                    if (s >= n) key[s] = ~uint64_t(0);
-                    else if (slots[s].own && !any) key[s] = ~uint64_t(0) - 1;  // behind every cell
-                    else key[s] = slots[s].key[signs] << (3 * (deepest - slots[s].levels));
-                }
-                uint8_t order[OctreeWideNode::kSlots];
-                std::iota(order, order + OctreeWideNode::kSlots, uint8_t(0));
-                // Back to front: the largest key (the farthest cell; unused slots before it) in lane 0.
-                // A kept group shares its key with the front cell of its node: it comes just before
-                // it, and a node's groups in their own order.
-                std::sort(order, order + OctreeWideNode::kSlots, [&](uint8_t x, uint8_t y) {
-                    const bool keptX = x < n && slots[x].kept, keptY = y < n && slots[y].kept;
-                    return key[x] != key[y] ? key[x] > key[y] : keptX != keptY ? keptX < keptY : x > y;
-                });
-                std::copy(order, order + OctreeWideNode::kSlots, any ? node.anyOrder[signs] : node.order[signs]);
-            }
+        for (unsigned signs = 0; signs < 8; ++signs) {
+            uint64_t key[OctreeWideNode::kSlots];
+            for (int s = 0; s < OctreeWideNode::kSlots; ++s)
+                key[s] = s < n ? slots[size_t(s)].key[signs] << (3 * (deepest - slots[size_t(s)].levels)) : ~uint64_t(0);
+            uint8_t order[OctreeWideNode::kSlots];
+            std::iota(order, order + OctreeWideNode::kSlots, uint8_t(0));
+            // Back to front: the largest key (the farthest cell; unused slots before it) in lane 0.
+            // A kept group shares its key with the front cell of its node: it comes just before it,
+            // and a node's groups in their own order.
+            std::sort(order, order + OctreeWideNode::kSlots, [&](uint8_t x, uint8_t y) {
+                const bool keptX = x < n && slots[x].kept, keptY = y < n && slots[y].kept;
+                return key[x] != key[y] ? key[x] > key[y] : keptX != keptY ? keptX < keptY : x > y;
+            });
+            std::copy(order, order + OctreeWideNode::kSlots, node.order[signs]);
+        }
     }
 
     std::vector<OctreeNode> &m_nodes;
@@ -295,10 +274,6 @@ void OctreeAccel::fold() {
     if (!m_fold || m_traversal != Traversal::Simd || m_nodes.empty()) return;
     OctreeFolder folder(m_nodes, m_kept, m_wide, m_wideSource);
     m_rootCount = folder.fold(0, m_rootCount, m_rootChild);
-    // Every node with kept groups is wide now and holds them as slots: the plain traversal's
-    // kept sets would never be read.
-    std::vector<OctreeKeptSet>().swap(m_keptSets);
-    for (OctreeKept &k : m_kept) k.set = OctreeKept::kNoSet;
     m_wide.shrink_to_fit();
     m_wideSource.shrink_to_fit();
     m_stats.wideNodes = m_wide.size();

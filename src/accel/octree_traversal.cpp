@@ -62,9 +62,9 @@ constexpr int kStackSize = (OctreeWideNode::kSlots - 1 + OctreeKept::kMaxGroups)
 constexpr int kStackSlack = OctreeWideNode::kSlots;
 
 /// A kept list waiting on the stack is a leaf entry (its offset and count); a measuring build
-/// marks it (and a wide node's kept slots) with this bit so that it is counted as a kept list.
+/// marks it with this bit so that it is counted as a kept list.
 #ifdef NORI_OCTREE_COUNTERS
-constexpr uint32_t kKeptTag = OctreeCounters::kKeptTag;
+constexpr uint32_t kKeptTag = 0x40000000u;
 #else
 constexpr uint32_t kKeptTag = 0;
 #endif
@@ -356,10 +356,8 @@ struct CellRay {
     int push(const OctreeWideNode &node, float mint, float maxt, uint32_t *child, uint32_t *count, float *tnear,
              uint32_t &nearChild, uint32_t &nearCount, F &entry, int &nearLane) const {
         static_assert(S == OctreeWideNode::kSlots);
-        // (Without entry distances: the any-hit query, with its own order.)
-        const uint8_t *order = kEntries ? node.order[signs] : node.anyOrder[signs];
-        return push<kEntries>(node.box, node.child, node.count, TableOrder<L>{order}, mint, maxt, child, count, tnear,
-                              nearChild, nearCount, entry, nearLane);
+        return push<kEntries>(node.box, node.child, node.count, TableOrder<L>{node.order[signs]}, mint, maxt, child, count,
+                              tnear, nearChild, nearCount, entry, nearLane);
     }
 };
 using SimdRay = CellRay<kNodeLanes, 8>;
@@ -438,7 +436,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
         if (count & OctreeNode::kInner) {
             NORI_OCTREE_COUNT(nodes, 1);
             uint32_t nearChild, nearCount;
-            // Entry distances, the nearest child's in lane nearLane (a plain node's kept groups read them).
+            // Entry distances, the nearest child's in lane nearLane (read where kept groups need it).
             SimdRay::F entry;
             WideRay::F wideEntry;
             int nearLane = 0;
@@ -460,8 +458,8 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             // The node's own large triangles, group by group, if the ray enters the group's box:
             // now if that box comes before the nearest child, else in order of entry among the
             // waiting children.
-            if ((count & OctreeNode::kKeptMask) && !wide) {  // (a wide node holds them as slots)
-                const float tc = !descend ? 0.0f : lane(entry, nearLane);
+            if (count & OctreeNode::kKeptMask) {
+                const float tc = !descend ? 0.0f : wide ? lane(wideEntry, nearLane) : lane(entry, nearLane);
                 // A group entered at tk: tested now, or waits among the children by entry.
                 auto visitGroup = [&](uint32_t offset, uint32_t n, float tk) {
                     if (!descend || tk <= tc) {
@@ -534,7 +532,7 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
             // The node's own large triangles first (the likeliest occluders), if the ray enters their box.
             // (Group by group, stopping at the first that occludes: the kept sets' one box test
             // for all groups measured slower here.)
-            if ((count & OctreeNode::kKeptMask) && !wide)  // (a wide node holds them as slots)
+            if (count & OctreeNode::kKeptMask)
                 for (uint32_t g = nodeIndexOf(child, count);; g = m_kept[g].next) {
                     const OctreeKept &group = m_kept[g];
                     float tk;
@@ -560,9 +558,7 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
                 continue;
             }
         } else {
-            if (countedList(count & kKeptTag, count & ~kKeptTag,
-                            [&] { return m_triangles.occluded(tri.get(), child, count & ~kKeptTag, ray.maxt); }))
-                return true;
+            if (countedList(false, count, [&] { return m_triangles.occluded(tri.get(), child, count, ray.maxt); })) return true;
         }
         if (sp == 0) break;
         --sp;

@@ -347,7 +347,7 @@ TEST(Octree, StatisticsAreConsistent) {
         // Nodes (256 bytes and a first kept group each), the further kept groups, the kept sets
         // of nodes with several groups (256 bytes each) and 40 bytes per reference, plus at
         // most 24 bytes of block box per 8 references (TriangleStore::blockSize); wide nodes
-        // (768 bytes and the index of the node each stands for).
+        // (640 bytes and the index of the node each stands for).
         const double wide = s["wide_nodes"] * (sizeof(OctreeWideNode) + 4);
         const double node = sizeof(OctreeNode) + sizeof(OctreeKept), sets = s["kept_sets"] * sizeof(OctreeKeptSet);
         const double groups = std::max(0.0, s["kept_groups"] - s["kept_nodes"]) * sizeof(OctreeKept);

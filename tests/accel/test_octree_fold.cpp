@@ -1,6 +1,6 @@
 /// \file test_octree_fold.cpp
 /// \brief The folded tree of the simd traversals (OctreeAccel::fold): it must reach every leaf
-/// and kept group of the octree exactly once (a wide node's own groups and its opened nodes' as its slots), its wide nodes' orders must be permutations of
+/// and kept group of the octree exactly once (an opened node's groups as slots of its wide node), its wide nodes' orders must be permutations of
 /// their slots that list the cells in the unfolded tree's front-to-back order, and its answers must be the unfolded tree's bit for
 /// bit (same cells, same leaves, same culling: only the number of node tests changes).
 #include <gtest/gtest.h>
@@ -68,16 +68,14 @@ Reached reachedUnfolded(const OctreeAccel &octree) {
     return r;
 }
 
-/// The same through the folded tree: a plain node's kept groups, and a wide node's slots, which
-/// hold its own groups and those of the nodes it opened (told from leaves by the unfolded
-/// tree's groups, \p unfolded).
+/// The same through the folded tree: a wide node's own kept groups, and the groups of the nodes
+/// it opened, which became slots (told from leaves by \p keptLists, the unfolded tree's groups).
 Reached reachedFolded(const OctreeAccel &octree, const Reached &unfolded) {
     const auto byNode = keptByNode(octree);
     Reached r;
     octree.forEachFoldedNode([&](const OctreeAccel::FoldedView &v) {
         ++r.nodes;
-        if (!v.wide)
-            for (const auto &g : keptGroupsOf(byNode, v.source)) ++r.kept[g];
+        for (const auto &g : keptGroupsOf(byNode, v.source)) ++r.kept[g];
         for (int s = 0; s < v.slots; ++s) {
             if (!v.count[s] || (v.count[s] & OctreeNode::kInner)) continue;
             const ListName list{v.child[s], v.count[s]};
@@ -102,22 +100,15 @@ TEST(OctreeFold, ReachesEveryLeafAndKeptListOnce) {
         for (const auto &[leaf, times] : folded.leaves) EXPECT_EQ(times, 1) << shape;
         for (const auto &[group, times] : folded.kept) EXPECT_EQ(times, 1) << shape;
         keptSlots += folded.kept.size() - [&] {
-            size_t own = 0;  // the groups plain nodes test themselves
+            size_t own = 0;  // the groups wide and plain nodes test themselves
             const auto byNode = keptByNode(octree);
-            octree.forEachFoldedNode([&](const OctreeAccel::FoldedView &v) {
-                if (!v.wide) own += keptGroupsOf(byNode, v.source).size();
-            });
+            octree.forEachFoldedNode([&](const OctreeAccel::FoldedView &v) { own += keptGroupsOf(byNode, v.source).size(); });
             return own;
         }();
-        // Every node with kept groups is wide, and holds them as slots.
-        octree.forEachFoldedNode([&](const OctreeAccel::FoldedView &v) {
-            if (!v.wide) {
-                EXPECT_EQ(v.ref & OctreeNode::kKeptMask, 0u) << shape << ": a plain node with kept groups";
-            }
-        });
-        // (A wide node may open nothing: one made for its kept groups alone.)
-        EXPECT_LE(folded.nodes, unfolded.nodes) << shape;
-        if (folded.nodes < unfolded.nodes) ++foldedShapes;
+        if (octree.wideNodes()) {
+            ++foldedShapes;
+            EXPECT_LT(folded.nodes, unfolded.nodes) << shape;
+        }
         // The statistics count what was folded.
         std::map<std::string, double> s;
         for (const AccelStat &st : accel->statistics()) s[st.name] = st.value;
@@ -139,17 +130,15 @@ TEST(OctreeFold, WideOrdersArePermutations) {
         if (!v.wide) return;
         ++wide;
         const OctreeWideNode &n = *v.wideNode;
-        for (int table = 0; table < 2; ++table)
         for (int signs = 0; signs < 8; ++signs) {
-            const uint8_t *order = table ? n.anyOrder[signs] : n.order[signs];
             std::vector<int> seen(OctreeWideNode::kSlots, 0);
-            for (int j = 0; j < OctreeWideNode::kSlots; ++j) ++seen[order[j]];
+            for (int j = 0; j < OctreeWideNode::kSlots; ++j) ++seen[n.order[signs][j]];
             for (int s = 0; s < OctreeWideNode::kSlots; ++s) ASSERT_EQ(seen[s], 1) << "slot " << s << " signs " << signs;
             // Used slots come after the unused ones (lane 0 is the farthest; the nearest cell
             // is the highest lane the ray enters).
             bool usedSeen = false;
             for (int j = 0; j < OctreeWideNode::kSlots; ++j) {
-                const int slot = order[j];
+                const int slot = n.order[signs][j];
                 const bool used = n.count[slot] != 0;
                 if (usedSeen) {
                     ASSERT_TRUE(used) << "an unused slot after a used one";
@@ -192,9 +181,7 @@ TEST(OctreeFold, AnswersAreTheUnfoldedTreesBitForBit) {
 
 // For every wide node and direction-sign combination, the order table lists the cells as the
 // unfolded traversal meets them: walking the opened nodes below the wide node's own node,
-// children in the octant order (OctreeNode::Pattern), front to back, each node's kept groups
-// before its cells, except that the closest-hit order puts the wide node's own groups behind
-// every cell (OctreeWideNode::order). (The order only affects
+// children in the octant order (OctreeNode::Pattern), front to back. (The order only affects
 // speed; a wrong one would cull less without changing an answer, so only this test sees it.)
 TEST(OctreeFold, WideOrdersAreTheUnfoldedFrontToBackOrder) {
     size_t checked = 0;
@@ -216,23 +203,19 @@ TEST(OctreeFold, WideOrdersAreTheUnfoldedFrontToBackOrder) {
             std::map<std::pair<uint64_t, uint32_t>, int> slotOf;
             for (int s = 0; s < OctreeWideNode::kSlots; ++s)
                 if (v.count[s]) slotOf[cellName(v.child[s], v.count[s])] = s;
-            for (int any = 0; any < 2; ++any)
             for (unsigned signs = 0; signs < 8; ++signs) {
                 std::vector<int> expected;  // front to back
-                auto groupsOf = [&](uint32_t index) {
-                    for (const auto &g : keptGroupsOf(byNode, index)) {
-                        if (slotOf.count(g)) expected.push_back(slotOf.at(g));
-                        else ADD_FAILURE() << shape << ": a kept group is no slot of its wide node";
-                    }
-                };
                 std::function<void(uint32_t)> walk = [&](uint32_t index) {
                     const auto [node, ref] = nodes.at(index);
                     const OctreeNode::Pattern p = OctreeNode::Pattern::fromCode((ref >> OctreeNode::kPatternShift) & 63u);
                     uint32_t octant = 0;
                     for (int l = 0; l < 3; ++l) octant |= ((signs >> p.axis[l]) & 1u) << (2 - l);
-                    // A node's kept groups come before its cells; for the closest hit, the wide
-                    // node's own come behind all cells.
-                    if (any || index != v.source) groupsOf(index);
+                    // An opened node's kept groups come before its cells (the wide node's own stay its own).
+                    if (index != v.source)
+                        for (const auto &g : keptGroupsOf(byNode, index)) {
+                            if (slotOf.count(g)) expected.push_back(slotOf.at(g));
+                            else ADD_FAILURE() << shape << ": a kept group of an opened node is no slot of its wide node";
+                        }
                     for (uint32_t j = 0; j < 8; ++j) {
                         const uint32_t c = j ^ octant;
                         if (!node->count[c]) continue;
@@ -243,12 +226,10 @@ TEST(OctreeFold, WideOrdersAreTheUnfoldedFrontToBackOrder) {
                     }
                 };
                 walk(v.source);
-                if (!any) groupsOf(v.source);
-                const uint8_t *order = any ? v.wideNode->anyOrder[signs] : v.wideNode->order[signs];
                 std::vector<int> got;  // the used slots, front to back (the table is back to front)
                 for (int j = OctreeWideNode::kSlots - 1; j >= 0; --j)
-                    if (v.count[order[j]]) got.push_back(order[j]);
-                ASSERT_EQ(got, expected) << shape << ": wide node " << v.index << ", signs " << signs << ", any " << any;
+                    if (v.count[v.wideNode->order[signs][j]]) got.push_back(v.wideNode->order[signs][j]);
+                ASSERT_EQ(got, expected) << shape << ": wide node " << v.index << ", signs " << signs;
                 ++checked;
             }
         });
