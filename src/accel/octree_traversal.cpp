@@ -62,9 +62,9 @@ constexpr int kStackSize = (OctreeWideNode::kSlots - 1 + OctreeKept::kMaxGroups)
 constexpr int kStackSlack = OctreeWideNode::kSlots;
 
 /// A kept list waiting on the stack is a leaf entry (its offset and count); a measuring build
-/// marks it with this bit so that it is counted as a kept list.
+/// marks it (and a wide node's kept slots) with this bit so that it is counted as a kept list.
 #ifdef NORI_OCTREE_COUNTERS
-constexpr uint32_t kKeptTag = 0x40000000u;
+constexpr uint32_t kKeptTag = OctreeCounters::kKeptTag;
 #else
 constexpr uint32_t kKeptTag = 0;
 #endif
@@ -558,7 +558,9 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
                 continue;
             }
         } else {
-            if (countedList(false, count, [&] { return m_triangles.occluded(tri.get(), child, count, ray.maxt); })) return true;
+            if (countedList(count & kKeptTag, count & ~kKeptTag,
+                            [&] { return m_triangles.occluded(tri.get(), child, count & ~kKeptTag, ray.maxt); }))
+                return true;
         }
         if (sp == 0) break;
         --sp;
