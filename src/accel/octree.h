@@ -291,9 +291,6 @@ private:
 /// \brief What the simd traversals did, summed over all queries since the last reset (a
 /// measuring build only: -DNORI_OCTREE_COUNTERS; single-threaded use).
 struct OctreeCounters {
-    /// A kept list among leaves (waiting on the stack, or a wide node's slot) carries this bit
-    /// in its count, so that it is counted as a kept list.
-    static constexpr uint32_t kKeptTag = 0x40000000u;
     uint64_t nodes = 0, keptTris = 0, leaves = 0, leafTris = 0;
     uint64_t wideNodes = 0;  ///< of nodes, the folded tree's wide ones
     uint64_t chunks = 0, exactT = 0;  ///< triangle spans tested (up to 16: a small list, a block or a pair of blocks), t recomputed in double (lanes)
@@ -309,6 +306,15 @@ struct OctreeCounters {
     uint64_t entered[OctreeWideNode::kSlots + 1] = {};
 };
 extern OctreeCounters g_octreeCounters;
+#endif
+
+/// A measuring build marks a kept list among leaves (waiting on the simd traversal's stack, or
+/// a wide node's slot) with this bit in its count, so that it is counted as a kept list; other
+/// builds leave counts as they are.
+#ifdef NORI_OCTREE_COUNTERS
+inline constexpr uint32_t kOctreeKeptTag = 0x40000000u;
+#else
+inline constexpr uint32_t kOctreeKeptTag = 0;
 #endif
 
 } // namespace nori

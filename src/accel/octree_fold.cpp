@@ -32,13 +32,6 @@ constexpr float kWideGain = 0.5f;
 /// keys (Slot::key), which must fit 64 bits.
 constexpr int kMaxFoldLevels = 20;
 
-/// A measuring build tags kept slots (OctreeCounters::kKeptTag) so that they are counted as kept lists.
-#ifdef NORI_OCTREE_COUNTERS
-constexpr uint32_t kKeptTag = OctreeCounters::kKeptTag;
-#else
-constexpr uint32_t kKeptTag = 0;
-#endif
-
 float surfaceArea(const float lo[3], const float hi[3]) {
     const float x = hi[0] - lo[0], y = hi[1] - lo[1], z = hi[2] - lo[2];
     return 2.0f * (x * y + y * z + z * x);
@@ -244,7 +237,7 @@ private:
                 node.box[a][OctreeWideNode::kSlots + s] = used ? slots[size_t(s)].hi[a] : -Infinity;
             }
             node.child[s] = used ? slots[size_t(s)].child : 0u;
-            node.count[s] = used ? slots[size_t(s)].count | (slots[size_t(s)].kept ? kKeptTag : 0u) : 0u;
+            node.count[s] = used ? slots[size_t(s)].count | (slots[size_t(s)].kept ? kOctreeKeptTag : 0u) : 0u;
         }
         // Keys of cells at different levels are compared aligned to the deepest: no cell's path
         // is a prefix of another's (cells are the leaves of the opened subtree), so the first

@@ -61,14 +61,6 @@ constexpr int kStackSize = (OctreeWideNode::kSlots - 1 + OctreeKept::kMaxGroups)
 /// Room past the stack top for a full-width compress store.
 constexpr int kStackSlack = OctreeWideNode::kSlots;
 
-/// A kept list waiting on the stack is a leaf entry (its offset and count); a measuring build
-/// marks it (and a wide node's kept slots) with this bit so that it is counted as a kept list.
-#ifdef NORI_OCTREE_COUNTERS
-constexpr uint32_t kKeptTag = OctreeCounters::kKeptTag;
-#else
-constexpr uint32_t kKeptTag = 0;
-#endif
-
 /// Per-ray data of the scalar child box test.
 struct SlabRay {
     float o[3], rcpNear[3], rcpFar[3];
@@ -473,7 +465,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
                             stackT[i] = stackT[i - 1];
                         }
                         stackChild[i] = offset;
-                        stackCount[i] = n | kKeptTag;
+                        stackCount[i] = n | kOctreeKeptTag;  // a leaf entry, tagged for a measuring build's counts
                         stackT[i] = tk;
                         ++pushed;
                     }
@@ -497,8 +489,8 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
                 continue;
             }
         } else {
-            countedList(count & kKeptTag, count & ~kKeptTag,
-                        [&] { return m_triangles.intersect(tri.get(), child, count & ~kKeptTag, best); });
+            countedList(count & kOctreeKeptTag, count & ~kOctreeKeptTag,
+                        [&] { return m_triangles.intersect(tri.get(), child, count & ~kOctreeKeptTag, best); });
         }
         // Next: the top of the stack, skipping entries beyond the closest hit so far.
         while (sp > 0 && stackT[sp - 1] > tri.cullLimit(best.t)) --sp;
@@ -558,8 +550,8 @@ bool OctreeAccel::occludedSimd(const Ray3f &ray) const {
                 continue;
             }
         } else {
-            if (countedList(count & kKeptTag, count & ~kKeptTag,
-                            [&] { return m_triangles.occluded(tri.get(), child, count & ~kKeptTag, ray.maxt); }))
+            if (countedList(count & kOctreeKeptTag, count & ~kOctreeKeptTag,
+                            [&] { return m_triangles.occluded(tri.get(), child, count & ~kOctreeKeptTag, ray.maxt); }))
                 return true;
         }
         if (sp == 0) break;
