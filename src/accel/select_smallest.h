@@ -20,8 +20,8 @@ namespace nori {
 /// below the pivot, and that boundary moves by the comparison's result. std::nth_element
 /// branches on each comparison, which a random order mispredicts half of the time; on
 /// leaves of thousands of triangles (pa5 table) the chunk order was a fifth of the build.
-/// Keys equal to the pivot are split off in a second pass, so any number of equal keys
-/// (grid-aligned scenes) still makes progress. After 2 log2(n) + 8 rounds (an adversarial
+/// Where the pivot is the range's least key, the keys equal to it are split off in a second
+/// pass, so any number of equal keys (grid-aligned scenes) still makes progress. After 2 log2(n) + 8 rounds (an adversarial
 /// order) the rest goes to std::nth_element.
 template <typename T, typename Key> void selectSmallest(T *first, T *kth, T *last, Key key) {
     if (kth <= first || kth >= last) return;
@@ -55,8 +55,14 @@ template <typename T, typename Key> void selectSmallest(T *first, T *kth, T *las
             last = lt;
             continue;
         }
-        first = lt;  // (kth >= lt: the part below stays before kth)
-        T *le = partition([pivot](float k) { return !(pivot < k); });  // [lt, le): equal to it
+        // kth >= lt: the part below stays before kth. Where it is not empty the range shrank
+        // (the pivot's own element is in the back part), and the next round picks a new pivot
+        // there; only a pivot that is the range's minimum needs the equal keys split off.
+        if (lt > first) {
+            first = lt;
+            continue;
+        }
+        T *le = partition([pivot](float k) { return !(pivot < k); });  // [first, le): equal to it
         if (kth <= le) return;  // the equal keys reach kth: any of them may stand there
         first = le;
     }
