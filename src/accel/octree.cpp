@@ -74,6 +74,8 @@ OctreeAccel::OctreeAccel(const PropertyList &props) {
     m_fold = props.getBoolean("fold", lanes::kMaxLanes >= OctreeWideNode::kSlots);
     // Off: the plain surface-area cost, for comparison (bench/README.md, twelfth round).
     m_termination = props.getBoolean("termination", true);
+    // Off: the greedy leaf-or-split rule alone (bench/README.md, twenty-second round).
+    m_lookahead = props.getBoolean("lookahead", true);
 }
 
 bool OctreeAccel::intersect(const Ray3f &ray, Hit &hit) const {
@@ -119,9 +121,9 @@ std::vector<AccelStat> OctreeAccel::statistics() const {
 
 std::string OctreeAccel::toString() const {
     return fmt::format(
-        "OctreeAccel[buildRule={}, maxDepth={}, leafSize={}, overlap={}, traversal={}, fold={}, intersector={}, termination={}]",
+        "OctreeAccel[buildRule={}, maxDepth={}, leafSize={}, overlap={}, traversal={}, fold={}, intersector={}, termination={}, lookahead={}]",
         buildRuleName(m_buildRule), m_maxDepth, m_leafSize, m_overlap == Overlap::Exact ? "exact" : "bbox",
-        traversalName(m_traversal), m_fold, intersectorName(m_intersector), m_termination);
+        traversalName(m_traversal), m_fold, intersectorName(m_intersector), m_termination, m_lookahead);
 }
 
 NORI_REGISTER_CLASS(OctreeAccel, "octree", EAccel);

@@ -108,7 +108,9 @@ static_assert(OctreeKept::kMaxGroups <= 8, "OctreeKeptSet holds eight groups");
 /// (seed | sorted | simd*), `intersector` (mt | watertight*), `fold` (whether the simd
 /// traversals use wide nodes, see fold(); default: where the machine tests 16 lanes at once),
 /// `termination` (`sah` only, true*: whether the cost model counts the rays that stop in a
-/// nearer child before reaching a farther one).
+/// nearer child before reaching a farther one), `lookahead` (`sah` only, true*: whether a split
+/// that the cost model rejects because of one child's price as a leaf is built anyway and
+/// judged by its subtree's cost).
 ///
 /// Build (octree_build.cpp): every cell splits at its midpoint; triangles are classified
 /// against the midplanes by their bounding boxes, the separating-axis test only for those that
@@ -118,7 +120,8 @@ static_assert(OctreeKept::kMaxGroups <= 8, "OctreeKeptSet holds eight groups");
 /// planes) and a sampled surface-area estimate prefers bisections that copy fewer of them,
 /// keeps triangles that would be copied into many children in the node itself, and makes a
 /// leaf where a surface-area cost model says splitting no longer pays (counting, with
-/// `termination`, the rays that stop in a nearer child before they reach a farther one).
+/// `termination`, the rays that stop in a nearer child before they reach a farther one, and
+/// with `lookahead`, the subtree a crowded child would get instead of its price as a leaf).
 /// `count` is the octree of issue 3 (x, y, z octants, leaf below leafSize); `seed` is the seed
 /// report's rule (each later sibling counts one level deeper). Every rule stops at maxDepth and
 /// at a budget of references per triangle for any input: 8 for `count` and `seed`, 1.5 for
@@ -259,6 +262,7 @@ private:
     Intersector m_intersector;
     bool m_fold;
     bool m_termination;
+    bool m_lookahead;
 
     // Structure: node 0 is the root (always an inner node), referenced as (0, m_rootCount)
     // (before fold()).

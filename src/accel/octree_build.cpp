@@ -1119,6 +1119,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         sumDown = down;
     }
     const size_t sum = sumDown + kept.size();
+    bool speculative = false;              // a split the greedy rule rejected (see below)
+    double childScale = 1.0, leafCost = 0.0;
     if (sah) {
         // Leaf or split, by the cost model (greedy: the children are priced as leaves).
         double cost = Cost::kNode + keptPrice;
@@ -1137,6 +1139,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         // area shared among the children it is copied into). Priced only where it could turn
         // a leaf into a split.
         const double later = entries > 1.0 ? (entries - 1.0) / entries : 0.0;
+        const double priced = children;  // (before the termination discount)
         if (in.termination && cost + children >= leaf && cost + children * (1.0 - later) < leaf) {
             double hits[8] = {};
             for (size_t i = 0; i < n; ++i) {
@@ -1152,8 +1155,26 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             }
             children *= 1.0 - later * opaque / entries;
         }
+        childScale = priced > 0.0 ? children / priced : 1.0;
         cost += children;
-        if (cost >= leaf) return nullptr;
+        if (cost >= leaf) {
+            // The greedy rule prices every child as a leaf. Where one child alone, at that
+            // price, makes the split lose, the child is nearly the node itself (the pebbles of
+            // a clutter scene: one child with 1078 of 1096 references in 0.99 of the box), and
+            // its own split may well pay. Then the split is built anyway if it would win with
+            // that child at its least price (one node and one chunk), and kept only if the
+            // subtree's cost, computed bottom up, beats the leaf (below).
+            int big = 0;
+            for (int c = 1; c < 8; ++c)
+                if (probability(c) * Cost::list(counts[c]) > probability(big) * Cost::list(counts[big])) big = c;
+            const double bigPrice = probability(big) * Cost::list(counts[big]) * childScale;
+            const double least = cost - bigPrice + probability(big) * (Cost::kNode + Cost::kChunk) * childScale;
+            const bool nearlyTheNode = Cost::kNode + keptPrice + bigPrice >= leaf;
+            if (!in.lookahead || !nearlyTheNode || counts[big] < in.leafSize || depth + 1 >= in.maxDepth || least >= leaf)
+                return nullptr;
+            speculative = true;
+            leafCost = leaf;
+        }
     } else if (in.rule == Rule::Count && (sumDown > 4 * down || (largest == down && sumDown >= 2 * down))) {
         // No progress: the triangles are mostly larger than the children (each lands in more
         // than half of them), or the fullest child keeps every triangle while many straddle
@@ -1206,6 +1227,15 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         group.wait();
     } else {
         for (int c = 0; c < 8; ++c) buildChild(c);
+    }
+    if (sah) {
+        // The subtree's price as the cost model makes it, bottom up: the children's own
+        // subtrees where they split.
+        double children = 0.0;
+        for (int c = 0; c < 8; ++c)
+            children += probability(c) * (node->inner[c] ? node->inner[c]->cost : Cost::list(counts[c]));
+        node->cost = Cost::kNode + keptPrice + children * childScale;
+        if (speculative && node->cost >= leafCost) return nullptr;
     }
     // The leaves' ids, without loose marks, in one block for all the node's leaves.
     size_t leafRefs = 0;

@@ -21,6 +21,7 @@ struct Input {
     size_t leafSize;
     bool exact;  ///< separating-axis test for triangles whose box straddles a midplane
     bool termination = true;  ///< `sah`: price a split's children by the rays that reach them (see split())
+    bool lookahead = true;    ///< `sah`: build a rejected split whose one child may pay as a subtree (see split())
 };
 
 /// A reference is a global triangle id; the `sah` rule marks with this bit the triangles that
@@ -65,6 +66,7 @@ struct TempNode {
     size_t subtreeRefs = 0;   ///< triangle references in this subtree (leaves and kept lists)
     size_t subtreeWords = 0;  ///< TriangleStore words of this subtree
     size_t subtreeGroups = 0; ///< kept groups in this subtree beyond each node's first
+    double cost = 0.0;        ///< (`sah`) the cost model's price of this subtree for a ray entering its box
 };
 
 /// \brief The bisections that make the children of \p cell under \p rule (see

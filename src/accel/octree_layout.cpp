@@ -136,7 +136,7 @@ void OctreeAccel::buildImpl() {
     }
 
     octree_build::Input in{vertices.data(), areas.data(), m_buildRule, m_maxDepth, size_t(m_leafSize), m_overlap == Overlap::Exact,
-                           m_termination};
+                           m_termination, m_lookahead};
     std::unique_ptr<TempNode> root = octree_build::subdivide(in, cell, sceneBox, refs.get(), count);
     bool rootIsLeaf = !root;
     if (rootIsLeaf) {

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <map>
 #include <pcg_random.hpp>
+#include <algorithm>
+#include <random>
 
 using namespace nori;
 using namespace nori::robust;
@@ -624,6 +626,39 @@ TEST(OctreeLeaves, NoInnerNodeHoldsOneChunkOrLess) {
                 smallDefault, nodesDefault, smallEight, nodesEight);
     EXPECT_EQ(smallDefault, 0);
     EXPECT_GT(smallEight, 0);
+}
+
+// The greedy leaf-or-split rule prices every child as a leaf, so a node whose one child holds
+// nearly all of it (a dense cluster beside a few stray specks just past a midplane) stays one
+// leaf: the split would pay that child's whole list again plus a node. With `lookahead` (the
+// default) the split is built anyway and kept, since the child's own subtree is far cheaper
+// than the leaf; without it, the cluster stays one leaf (the control).
+TEST(OctreeLeaves, ACrowdedChildIsSplitNotLeftAsOneLeaf) {
+    MeshData data;
+    std::mt19937 rng(131);
+    std::uniform_real_distribution<float> at(0.0f, 0.24f);
+    for (int i = 0; i < 1078; ++i) addTriangle(data, Point3f(at(rng), at(rng), at(rng)), 0.005f);
+    // Eighteen specks just above x = 0.25, the cluster cell's upper plane, and one in the far
+    // corner, which makes the root cell [0, 1]^3 (so the cluster lies in a child's child).
+    for (int i = 0; i < 18; ++i) addTriangle(data, Point3f(0.2501f, 0.01f * float(i), 0.1f), 1e-5f);
+    addTriangle(data, Point3f(0.999f, 0.999f, 0.999f), 1e-4f);
+    Mesh mesh(data, "cluster");
+    auto largestLeaf = [&](bool lookahead) {
+        PropertyList p;
+        p.setBoolean("lookahead", lookahead);
+        auto accel = makeAccel("octree", p, {&mesh});
+        uint32_t largest = 0;
+        dynamic_cast<const OctreeAccel &>(*accel).forEachNode([&](const OctreeAccel::NodeView &v) {
+            for (int c = 0; c < 8; ++c)
+                if (!(v.node.count[c] & OctreeNode::kInner)) largest = std::max(largest, v.node.count[c]);
+        });
+        return largest;
+    };
+    const uint32_t greedy = largestLeaf(false), ahead = largestLeaf(true);
+    std::printf("[structure] cluster of 1078 beside 18 specks: largest leaf %u triangles (greedy rule alone: %u)\n",
+                ahead, greedy);
+    EXPECT_GE(greedy, 1078u);
+    EXPECT_LE(ahead, 256u);
 }
 
 // The cost model's termination term (Ize & Hansen 2011; octree_build.cpp, split()): a ray that
