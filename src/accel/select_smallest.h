@@ -21,8 +21,8 @@ namespace nori {
 /// branches on each comparison, which a random order mispredicts half of the time; on
 /// leaves of thousands of triangles (pa5 table) the chunk order was a fifth of the build.
 /// Where the pivot is the range's least key, the keys equal to it are split off in a second
-/// pass, so any number of equal keys (grid-aligned scenes) still makes progress. After 2 log2(n) + 8 rounds (an adversarial
-/// order) the rest goes to std::nth_element.
+/// pass, so any number of equal keys (grid-aligned scenes) still makes progress. After
+/// 2 log2(n) + 8 rounds (an adversarial order) the rest goes to std::nth_element.
 template <typename T, typename Key> void selectSmallest(T *first, T *kth, T *last, Key key) {
     if (kth <= first || kth >= last) return;
     size_t rounds = 8;
