@@ -50,6 +50,14 @@ int run(int argc, char **argv) {
     if (const char *ls = std::getenv("NORI_LEAFSIZE")) props.setInteger("leafSize", std::atoi(ls));
     OctreeAccel octree{props};
     for (const Mesh *m : meshes) octree.addMesh(m);
+    // Embree's default mode on one thread (NORI_EMBREE), its meshes added.
+    auto makeEmbree = [&] {
+        PropertyList ep;
+        ep.setInteger("threads", 1);
+        auto embree = std::make_unique<bench::EmbreeAccel>(ep);
+        for (const Mesh *m : meshes) embree->addMesh(m);
+        return embree;
+    };
     auto t0 = cpuNs();
     octree.build();
     auto t1 = cpuNs();
@@ -61,13 +69,11 @@ int run(int argc, char **argv) {
         for (int k = 0; k < repeats; ++k) {
             std::unique_ptr<Accel> again;
             if (ofEmbree) {
-                PropertyList ep;
-                ep.setInteger("threads", 1);
-                again = std::make_unique<bench::EmbreeAccel>(ep);
+                again = makeEmbree();
             } else {
                 again = std::make_unique<OctreeAccel>(props);
+                for (const Mesh *m : meshes) again->addMesh(m);
             }
-            for (const Mesh *m : meshes) again->addMesh(m);
             const double b0 = cpuNs();
             again->build();
             ms.push_back((cpuNs() - b0) * 1e-6);
@@ -120,10 +126,7 @@ int run(int argc, char **argv) {
     // NORI_EMBREE: the same rays through Embree's default mode (one thread).
     std::unique_ptr<Accel> embree;
     if (std::getenv("NORI_EMBREE")) {
-        PropertyList ep;
-        ep.setInteger("threads", 1);
-        embree = std::make_unique<bench::EmbreeAccel>(ep);
-        for (const Mesh *m : meshes) embree->addMesh(m);
+        embree = makeEmbree();
         embree->build();
     }
     const Accel &timed = embree ? *embree : static_cast<const Accel &>(octree);
