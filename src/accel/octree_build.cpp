@@ -583,9 +583,12 @@ __attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const
     unsigned kept = mask & (classifier.cellsHolding(v[0], cell.min, cell.max) |
                             classifier.cellsHolding(v[1], cell.min, cell.max) |
                             classifier.cellsHolding(v[2], cell.min, cell.max));
-    for (unsigned m = mask & ~kept; m; m &= m - 1) {
+    unsigned m = mask & ~kept;
+    if (!m) return kept;
+    const int plane = axisAlignedPlane(v[0], v[1], v[2]);
+    for (; m; m &= m - 1) {
         int c = __builtin_ctz(m);
-        if (triangleOverlapsBox(v[0], v[1], v[2], cells[c])) kept |= 1u << c;
+        if (triangleOverlapsBox(v[0], v[1], v[2], cells[c], plane)) kept |= 1u << c;
     }
     return kept ? kept : mask;  // never lose a triangle to rounding
 }

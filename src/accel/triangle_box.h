@@ -13,5 +13,17 @@ namespace nori {
 /// Degenerate triangles (zero area, repeated corners) are handled: their missing axes are
 /// simply never separating.
 bool triangleOverlapsBox(const Point3f &a, const Point3f &b, const Point3f &c, const BoundingBox3f &box);
+/// \brief The same answer for a triangle whose axisAlignedPlane() is \p plane, known to a
+/// caller that tests the triangle against several boxes: an axis-aligned triangle (a wall, a
+/// floor) needs a third of the separating axes.
+bool triangleOverlapsBox(const Point3f &a, const Point3f &b, const Point3f &c, const BoundingBox3f &box, int plane);
+/// \brief The axis i whose coordinate the corners share exactly (the triangle lies in the plane
+/// x_i = const; the lowest such i), or -1.
+inline int axisAlignedPlane(const Point3f &a, const Point3f &b, const Point3f &c) {
+    return a.x() == b.x() && a.x() == c.x()   ? 0
+           : a.y() == b.y() && a.y() == c.y() ? 1
+           : a.z() == b.z() && a.z() == c.z() ? 2
+                                              : -1;
+}
 
 } // namespace nori

@@ -103,7 +103,7 @@ gen::GeneratedScene generated(const std::string &shape, uint64_t triangles, uint
 TEST(OctreeCells, SeparatingAxisTestAgreesWithClipping) {
     pcg32 rng(11);
     auto u = [&] { return float(rng() >> 8) * 0x1p-24f; };
-    int overlaps = 0, misses = 0;
+    int overlaps = 0, misses = 0, flat = 0, flatOverlaps = 0, flatMisses = 0;
     for (int trial = 0; trial < 20000; ++trial) {
         Point3f lo(u() * 2 - 1, u() * 2 - 1, u() * 2 - 1);
         Vector3f size(0.05f + u(), 0.05f + u(), 0.05f + u());
@@ -113,20 +113,31 @@ TEST(OctreeCells, SeparatingAxisTestAgreesWithClipping) {
         Point3f v[3];
         for (Point3f &p : v) p = centre + reach * Vector3f(u() * 2 - 1, u() * 2 - 1, u() * 2 - 1);
         if (trial % 3 == 0) v[2] = v[0] + 0.01f * (v[2] - v[0]) + (v[1] - v[0]) * u();  // a sliver
+        if (trial % 4 == 1) {  // in an axis-aligned plane (a wall, a floor): the test's short path
+            const int a = (trial / 4) % 3;
+            v[0][a] = v[1][a] = v[2][a] = lo[a] + size[a] * (1.2f * u() - 0.1f);  // mostly through the box
+            ++flat;
+        }
         Vector3f m = 1e-4f * size;
         BoundingBox3f inner(box.min + m, box.max - m), outer(box.min - m, box.max + m);
         bool sat = triangleOverlapsBox(v[0], v[1], v[2], box);
         if (clipsToBox(v[0], v[1], v[2], inner)) {
             ++overlaps;
+            flatOverlaps += trial % 4 == 1;
             EXPECT_TRUE(sat) << "trial " << trial << ": a triangle reaching into the box was rejected";
         } else if (!clipsToBox(v[0], v[1], v[2], outer)) {
             ++misses;
+            flatMisses += trial % 4 == 1;
             EXPECT_FALSE(sat) << "trial " << trial << ": a triangle missing the box was accepted";
         }
     }
-    // Both kinds occur often enough for the test to mean something.
+    // Both kinds occur often enough for the test to mean something, for axis-aligned triangles too.
+    std::printf("[structure] separating axes: %d overlaps, %d misses (axis-aligned triangles: %d of %d, %d of %d)\n",
+                overlaps, misses, flatOverlaps, flat, flatMisses, flat);
     EXPECT_GT(overlaps, 2000);
     EXPECT_GT(misses, 2000);
+    EXPECT_GT(flatOverlaps, 500);
+    EXPECT_GT(flatMisses, 500);
 }
 
 // The `sah` rule's children tile their cell, and no child is less cubic than its parent or
