@@ -71,12 +71,12 @@ void CommandLine::declare(CliApp &cli) {
             overrides.accelProps.setString(property, value, fmt::format("command line ({})", property));
         };
     };
-    app.add_option_function<int>("--max-depth", integerProperty("maxDepth"), "deepest subdivision level (default 16)")
+    app.add_option_function<int>("--max-depth", integerProperty("maxDepth"), "deepest subdivision level (default 24; 16 with the count and seed build rules)")
         ->check(integerIn(0, 32))
         ->option_text("0..32")
         ->group(OctreeGroup);
     app.add_option_function<int>("--leaf-size", integerProperty("leafSize"),
-                                 "a node with fewer triangles becomes a leaf (default 512)")
+                                 "a node with fewer triangles becomes a leaf (default 17; 512 with the count and seed build rules)")
         ->check(integerIn(1, 1 << 30))
         ->option_text("N")
         ->group(OctreeGroup);

@@ -3,6 +3,8 @@
 /// forms, --version, --, grouped --help, usage errors, options that do not apply, and a
 /// --stats-json that stays valid JSON whatever the scene's file name.
 #include "run_tool.h"
+#include "accel/octree.h"
+#include <nori/proplist.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <temp_dir.h>
@@ -78,6 +80,27 @@ TEST(CliOptions, HelpIsGroupedAndGoesToStdout) {
     EXPECT_EQ(r.code, 0);
     for (const char *heading : {"Output:", "Rendering:", "Octree (only with --accel octree", "--version", "-t,--threads"})
         EXPECT_NE(r.out.find(heading), std::string::npos) << heading << " missing in\n" << r.out;
+}
+
+// The defaults --help states for the octree are the accelerator's own (they had gone stale:
+// the help said maxDepth 16 and leafSize 512, the defaults of the count rule, long after sah
+// became the default with 24 and 17).
+TEST(CliOptions, HelpStatesTheOctreesActualDefaults) {
+    PropertyList none;
+    const OctreeAccel octree(none);
+    const std::string settings = octree.toString();
+    ToolRun r = runTool(kNori, {"--help"});
+    ASSERT_EQ(r.code, 0);
+    for (const auto &[property, option] : {std::pair{"maxDepth", "--max-depth"}, std::pair{"leafSize", "--leaf-size"}}) {
+        const size_t at = settings.find(std::string(property) + "=");
+        ASSERT_NE(at, std::string::npos) << settings;
+        const std::string value = settings.substr(at + std::string(property).size() + 1,
+                                                  settings.find_first_of(",]", at) - at - std::string(property).size() - 1);
+        const size_t line = r.out.find(option);
+        ASSERT_NE(line, std::string::npos) << option;
+        const std::string text = r.out.substr(line, r.out.find('\n', line) - line);
+        EXPECT_NE(text.find("(default " + value + ";"), std::string::npos) << option << ": " << text << " (the octree: " << settings << ")";
+    }
 }
 
 TEST(CliOptions, UsageErrorsAreOneLineNamingTheOptionWithStatus2) {
