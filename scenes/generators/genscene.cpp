@@ -14,6 +14,7 @@ int main(int argc, char **argv) {
     uint64_t triangles = 0, seed = 1;
     int spp = 16;
     bool list = false;
+    std::vector<float> rotate, offset;
     app.add_option("shape", shape, "shape to generate, or 'all' (see --list)");
     app.add_option("out_dir", outDir, "folder for SHAPE.obj and SHAPE.xml (created if missing)");
     app.add_option("--triangles", triangles, "approximate triangle count (default: the shape's own)");
@@ -21,6 +22,15 @@ int main(int argc, char **argv) {
     app.add_option("--integrator", integrator, "integrator of the written scene (default: the shape's own)")
         ->check(CLI::IsMember({"ao", "normals"}));
     app.add_option("--spp", spp, "samples per pixel of the written scene")->check(CLI::Range(1, 1 << 16));
+    app.add_option("--rotate", rotate,
+                   "AX,AY,AZ,DEGREES: turn the whole scene (mesh and camera) about that axis, e.g. 1,2,0.5,33 "
+                   "(walls and floors at an angle)")
+        ->delimiter(',')
+        ->expected(4);
+    app.add_option("--offset", offset,
+                   "X,Y,Z: then move it by that much, e.g. 100000,0,-200000 (a scene far from the origin)")
+        ->delimiter(',')
+        ->expected(3);
     app.add_flag("--list", list, "list the shapes and exit");
     try {
         app.parse(argc, argv);
@@ -50,9 +60,19 @@ int main(int argc, char **argv) {
             gen::GenParams params;
             params.triangles = triangles;
             params.seed = seed;
+            std::string placed;
+            if (!rotate.empty()) {
+                params.placement.axis = Vector3f(rotate[0], rotate[1], rotate[2]);
+                params.placement.degrees = rotate[3];
+                placed += fmt::format(" --rotate {},{},{},{}", rotate[0], rotate[1], rotate[2], rotate[3]);
+            }
+            if (!offset.empty()) {
+                params.placement.offset = Vector3f(offset[0], offset[1], offset[2]);
+                placed += fmt::format(" --offset {},{},{}", offset[0], offset[1], offset[2]);
+            }
             gen::GeneratedScene scene = gen::generateScene(info.name, params);
-            std::string comment = fmt::format("nori-genscene {} --triangles {} --seed {}", info.name,
-                                              triangles ? triangles : info.defaultTriangles, seed);
+            std::string comment = fmt::format("nori-genscene {} --triangles {} --seed {}{}", info.name,
+                                              triangles ? triangles : info.defaultTriangles, seed, placed);
             gen::SceneWriter::write(scene, outDir, info.name, integrator.empty() ? scene.integrator : integrator, spp,
                                     comment);
             std::printf("%s/%s.xml: %llu triangles\n", outDir.c_str(), info.name,

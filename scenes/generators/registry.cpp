@@ -3,6 +3,7 @@
 #include "scene_generator.h"
 #include "shape_generators.h"
 #include <nori/transform.h>
+#include <cmath>
 
 namespace nori::gen {
 
@@ -39,6 +40,15 @@ std::string shapeList() {
     return list;
 }
 
+void place(GeneratedScene &scene, const Placement &placement) {
+    const Transform motion = Transform::translate(placement.offset) * Transform::rotate(placement.axis, placement.degrees);
+    for (Point3f &p : scene.mesh.positions) p = motion.applyPoint(p);
+    for (Normal3f &n : scene.mesh.normals) n = motion.applyNormal(n).normalized();
+    scene.camera.origin = motion.applyPoint(scene.camera.origin);
+    scene.camera.target = motion.applyPoint(scene.camera.target);
+    scene.camera.up = motion.applyVector(scene.camera.up);
+}
+
 GeneratedScene generateScene(const std::string &name, const GenParams &params) {
     const ShapeInfo *info = findShape(name);
     if (!info) throw NoriException("unknown scene shape '{}' (expected one of: {})", name, shapeList());
@@ -48,7 +58,16 @@ GeneratedScene generateScene(const std::string &name, const GenParams &params) {
     if (p.triangles < info->minTriangles || p.triangles > maxTriangles)
         throw NoriException("shape '{}' needs between {} and {} triangles, got {}", name, info->minTriangles,
                             maxTriangles, p.triangles);
-    return info->generate(p);
+    if (!p.placement.isIdentity()) {
+        const Placement &pl = p.placement;
+        if (!pl.axis.allFinite() || pl.axis.norm() == 0.0f || !std::isfinite(pl.degrees) || !pl.offset.allFinite())
+            throw NoriException("placement of shape '{}': the rotation needs a finite nonzero axis and a finite angle, "
+                                "the offset finite coordinates",
+                                name);
+    }
+    GeneratedScene scene = info->generate(p);
+    if (!p.placement.isIdentity()) place(scene, p.placement);
+    return scene;
 }
 
 std::unique_ptr<Camera> makeCamera(const GenCamera &c) {

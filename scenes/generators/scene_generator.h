@@ -11,10 +11,22 @@
 
 namespace nori::gen {
 
-/// \brief What a generator is asked for: a triangle budget and a seed.
+/// \brief A rigid motion of a whole generated scene, mesh and camera alike (so the image stays
+/// the same): a rotation by \p degrees about \p axis, then a translation by \p offset. It
+/// tilts every axis-aligned wall and floor of a shape (a model placed at an angle), or moves
+/// the scene far from the origin (a georeferenced model), where float coordinates are coarse.
+struct Placement {
+    Vector3f axis{0, 1, 0};
+    float degrees = 0.0f;
+    Vector3f offset{0, 0, 0};
+    bool isIdentity() const { return degrees == 0.0f && offset == Vector3f(0, 0, 0); }
+};
+
+/// \brief What a generator is asked for: a triangle budget and a seed, and where the result goes.
 struct GenParams {
     uint64_t triangles = 0;  ///< approximate triangle count; 0: the shape's default
     uint64_t seed = 1;       ///< everything random in the scene derives from it
+    Placement placement{};   ///< applied after the shape is made (generateScene)
 };
 
 /// \brief A look-at pinhole camera (Nori's `perspective`, horizontal fov in degrees).
@@ -55,9 +67,12 @@ struct ShapeInfo {
 const std::vector<ShapeInfo> &shapes();
 /// \brief The shape called \p name, or nullptr.
 const ShapeInfo *findShape(const std::string &name);
-/// \brief Generate \p name; throws NoriException for an unknown shape or a triangle budget
-/// outside [minTriangles, 50M].
+/// \brief Generate \p name, then move it by params.placement; throws NoriException for an
+/// unknown shape, a triangle budget outside [minTriangles, 50M] or a rotation about a zero or
+/// non-finite axis.
 GeneratedScene generateScene(const std::string &name, const GenParams &params = {});
+/// \brief Move \p scene (mesh and camera) by \p placement.
+void place(GeneratedScene &scene, const Placement &placement);
 /// \brief The scene's camera as a Nori `perspective` camera object.
 std::unique_ptr<Camera> makeCamera(const GenCamera &camera);
 /// \brief Comma-separated shape names (for messages).

@@ -83,6 +83,49 @@ TEST_P(EveryShape, CameraSeesTheScene) {
     EXPECT_GT(double(hits), 0.2 * double(rays));
 }
 
+// A placed scene (turned and moved far off, as a model placed at an angle in a georeferenced
+// frame) is the same scene: every vertex where the rotation and offset put it (computed here in
+// double with Eigen's own angle-axis form), and the camera moved with the mesh, so that its
+// rays meet the same surfaces at the same distances (all but a few silhouette rays, which
+// float coordinates of another magnitude may send past an edge; not the same triangle ids:
+// where faces overlap, as in the coplanar shape, rounding picks one of them).
+TEST_P(EveryShape, PlacementMovesMeshAndCameraTogether) {
+    const uint64_t budget = std::max<uint64_t>(5000, findShape(GetParam())->minTriangles);
+    GenParams placedParams{budget, 2};
+    placedParams.placement = {Vector3f(1.0f, 2.0f, 0.5f), 33.0f, Vector3f(3000.0f, 1000.0f, -2000.0f)};
+    const GeneratedScene plain = generateScene(GetParam(), GenParams{budget, 2});
+    const GeneratedScene placed = generateScene(GetParam(), placedParams);
+    ASSERT_EQ(placed.mesh.faces, plain.mesh.faces);
+    ASSERT_EQ(placed.mesh.positions.size(), plain.mesh.positions.size());
+    const Eigen::Matrix3d rotation =
+        Eigen::AngleAxisd(33.0 * M_PI / 180.0, Eigen::Vector3d(1.0, 2.0, 0.5).normalized()).toRotationMatrix();
+    const Eigen::Vector3d offset(3000.0, 1000.0, -2000.0);
+    double worst = 0.0;
+    for (size_t i = 0; i < plain.mesh.positions.size(); ++i) {
+        const Eigen::Vector3d expected = rotation * plain.mesh.positions[i].cast<double>() + offset;
+        worst = std::max(worst, (placed.mesh.positions[i].cast<double>() - expected).norm() / (1.0 + expected.norm()));
+    }
+    EXPECT_LT(worst, 1e-6) << "a vertex is not where the placement puts it";
+
+    GenCamera smallPlain = plain.camera, smallPlaced = placed.camera;
+    smallPlain.width = smallPlaced.width = 24;
+    smallPlain.height = smallPlaced.height = 18;
+    auto cameraPlain = makeCamera(smallPlain), cameraPlaced = makeCamera(smallPlaced);
+    Mesh meshPlain(plain.mesh, "plain"), meshPlaced(placed.mesh, "placed");
+    std::unique_ptr<Accel> brutePlain = bruteForce(meshPlain), brutePlaced = bruteForce(meshPlaced);
+    const std::vector<Ray3f> raysPlain = cameraRays(*cameraPlain, 1, 5), raysPlaced = cameraRays(*cameraPlaced, 1, 5);
+    ASSERT_EQ(raysPlain.size(), raysPlaced.size());
+    size_t same = 0, hits = 0;
+    for (size_t i = 0; i < raysPlain.size(); ++i) {
+        Hit a, b;
+        const bool hitA = brutePlain->intersect(raysPlain[i], a), hitB = brutePlaced->intersect(raysPlaced[i], b);
+        hits += hitA;
+        same += hitA == hitB && (!hitA || std::abs(a.t - b.t) <= 1e-3f * a.t);
+    }
+    EXPECT_GT(hits, 0u);
+    EXPECT_GE(double(same), 0.97 * double(raysPlain.size())) << same << " of " << raysPlain.size() << " rays agree";
+}
+
 INSTANTIATE_TEST_SUITE_P(Shapes, EveryShape, testing::Values("city", "grass", "heightfield", "sphere", "room", "wide",
                                                              "tabletop", "stadium", "coplanar", "forest", "office",
                                                              "towers", "clutter", "hair", "sparse"));

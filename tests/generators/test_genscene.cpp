@@ -66,6 +66,24 @@ TEST(Genscene, WritesWhatTheGeneratorMakes) {
     EXPECT_EQ(files, 2u);
 }
 
+// --rotate and --offset place the scene as GenParams::placement does, and the scene's comment
+// says how, so that the written files can be made again.
+TEST(Genscene, PlacesTheSceneAndSaysHow) {
+    TempDir dir;
+    ToolRun r = genscene(dir, "room " + dir.path().string() + "/out --triangles 6000 --seed 4 --rotate 1,2,0.5,33 --offset 3000,1000,-2000");
+    ASSERT_EQ(r.status, 0) << r.err;
+    gen::GenParams params{6000, 4};
+    params.placement = {Vector3f(1.0f, 2.0f, 0.5f), 33.0f, Vector3f(3000.0f, 1000.0f, -2000.0f)};
+    gen::GeneratedScene expected = gen::generateScene("room", params);
+    MeshData loaded = loadObjFile(dir.file("out/room.obj"));
+    ASSERT_EQ(loaded.positions.size(), expected.mesh.positions.size());
+    for (size_t i = 0; i < loaded.positions.size(); ++i) ASSERT_EQ(loaded.positions[i], expected.mesh.positions[i]) << i;
+    std::ifstream xml(dir.file("out/room.xml"));
+    std::stringstream text;
+    text << xml.rdbuf();
+    EXPECT_NE(text.str().find("--seed 4 --rotate 1,2,0.5,33 --offset 3000,1000,-2000"), std::string::npos) << text.str();
+}
+
 TEST(Genscene, BadArgumentsGiveOneLineAndNoFiles) {
     TempDir dir;
     std::string out = dir.path().string() + "/out";
@@ -79,6 +97,9 @@ TEST(Genscene, BadArgumentsGiveOneLineAndNoFiles) {
         {"city " + out + " --triangles abc", "--triangles", 2},
         {"city " + out + " --integrator path", "--integrator", 2},
         {"city", "give SHAPE and OUT_DIR", 2},
+        {"city " + out + " --rotate 1,2", "--rotate", 2},
+        {"city " + out + " --offset 1,x,3", "--offset", 2},
+        {"city " + out + " --rotate 0,0,0,30", "finite nonzero axis", 1},
     };
     for (const Case &c : cases) {
         ToolRun r = genscene(dir, c.args);
