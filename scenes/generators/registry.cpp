@@ -58,13 +58,11 @@ GeneratedScene generateScene(const std::string &name, const GenParams &params) {
     if (p.triangles < info->minTriangles || p.triangles > maxTriangles)
         throw NoriException("shape '{}' needs between {} and {} triangles, got {}", name, info->minTriangles,
                             maxTriangles, p.triangles);
-    if (!p.placement.isIdentity()) {
-        const Placement &pl = p.placement;
-        if (!pl.axis.allFinite() || pl.axis.norm() == 0.0f || !std::isfinite(pl.degrees) || !pl.offset.allFinite())
-            throw NoriException("placement of shape '{}': the rotation needs a finite nonzero axis and a finite angle, "
-                                "the offset finite coordinates",
-                                name);
-    }
+    const Placement &pl = p.placement;
+    if (pl.degrees != 0.0f && (!pl.axis.allFinite() || pl.axis.norm() == 0.0f || !std::isfinite(pl.degrees)))
+        throw NoriException("placement of shape '{}': a rotation needs a finite nonzero axis and a finite angle", name);
+    if (!pl.offset.allFinite())
+        throw NoriException("placement of shape '{}': an offset needs finite coordinates", name);
     GeneratedScene scene = info->generate(p);
     if (!p.placement.isIdentity()) place(scene, p.placement);
     return scene;

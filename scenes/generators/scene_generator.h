@@ -68,8 +68,8 @@ const std::vector<ShapeInfo> &shapes();
 /// \brief The shape called \p name, or nullptr.
 const ShapeInfo *findShape(const std::string &name);
 /// \brief Generate \p name, then move it by params.placement; throws NoriException for an
-/// unknown shape, a triangle budget outside [minTriangles, 50M] or a rotation about a zero or
-/// non-finite axis.
+/// unknown shape, a triangle budget outside [minTriangles, 50M], a rotation about a zero or
+/// non-finite axis or a non-finite offset.
 GeneratedScene generateScene(const std::string &name, const GenParams &params = {});
 /// \brief Move \p scene (mesh and camera) by \p placement.
 void place(GeneratedScene &scene, const Placement &placement);

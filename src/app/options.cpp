@@ -71,7 +71,8 @@ void CommandLine::declare(CliApp &cli) {
             overrides.accelProps.setString(property, value, fmt::format("command line ({})", property));
         };
     };
-    app.add_option_function<int>("--max-depth", integerProperty("maxDepth"), "deepest subdivision level (default 24; 16 with the count and seed build rules)")
+    app.add_option_function<int>("--max-depth", integerProperty("maxDepth"),
+                                 "deepest subdivision level (default 24; 16 with the count and seed build rules)")
         ->check(integerIn(0, 32))
         ->option_text("0..32")
         ->group(OctreeGroup);

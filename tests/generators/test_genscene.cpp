@@ -70,7 +70,8 @@ TEST(Genscene, WritesWhatTheGeneratorMakes) {
 // says how, so that the written files can be made again.
 TEST(Genscene, PlacesTheSceneAndSaysHow) {
     TempDir dir;
-    ToolRun r = genscene(dir, "room " + dir.path().string() + "/out --triangles 6000 --seed 4 --rotate 1,2,0.5,33 --offset 3000,1000,-2000");
+    ToolRun r = genscene(dir, "room " + dir.path().string() +
+                                  "/out --triangles 6000 --seed 4 --rotate 1,2,0.5,33 --offset 3000,1000,-2000");
     ASSERT_EQ(r.status, 0) << r.err;
     gen::GenParams params{6000, 4};
     params.placement = {Vector3f(1.0f, 2.0f, 0.5f), 33.0f, Vector3f(3000.0f, 1000.0f, -2000.0f)};
@@ -99,7 +100,8 @@ TEST(Genscene, BadArgumentsGiveOneLineAndNoFiles) {
         {"city", "give SHAPE and OUT_DIR", 2},
         {"city " + out + " --rotate 1,2", "--rotate", 2},
         {"city " + out + " --offset 1,x,3", "--offset", 2},
-        {"city " + out + " --rotate 0,0,0,30", "finite nonzero axis", 1},
+        {"city " + out + " --rotate 0,0,0,30", "a rotation needs a finite nonzero axis", 1},
+        {"city " + out + " --offset 1,inf,3", "an offset needs finite coordinates", 1},
     };
     for (const Case &c : cases) {
         ToolRun r = genscene(dir, c.args);
