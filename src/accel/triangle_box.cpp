@@ -2,6 +2,7 @@
 /// \brief Separating-axis triangle/box test after Akenine-Möller 2001 (own implementation).
 #include "triangle_box.h"
 #include <cmath>
+#include <cstdint>
 
 namespace nori {
 
@@ -58,20 +59,32 @@ bool triangleOverlapsBox(const Point3f &a, const Point3f &b, const Point3f &c, c
             if (edgeSeparates(plane, e)) return false;
         return true;
     }
-    // 2. The triangle's plane: the box must have corners on both sides (or touch it). Tested
-    // before the edge axes (the answer is the same whichever axis separates): a nearly flat
-    // triangle beside a cell above or below it is separated here, and the nine edge axes
-    // were each computed first.
-    {
-        V3 n = edges[0].cross(edges[1]);
-        double d = n.dot(v0);
-        double r = half.x() * std::abs(n.x()) + half.y() * std::abs(n.y()) + half.z() * std::abs(n.z());
-        if (!(std::abs(d) <= r)) return false;
+    // 2. and 3. The triangle's plane and the nine cross products of triangle edges and box
+    // axes (unit(i) x e: a zero component each), ten axes in lanes at once, without a branch
+    // per axis: a triangle off the axes (a turned wall, a scanned mesh) touches about half the
+    // cells it is tested against (turned towers: 35,686 of 74,022), and then every axis has to
+    // be computed anyway. Lanes j = 0..2 of vector e: unit(j) x edges[e]; lane 3 of the first:
+    // the normal; the other two lanes 3 are zero axes (projections and radius 0: never
+    // separating).
+    const V3 n = edges[0].cross(edges[1]);
+    typedef double D4 __attribute__((vector_size(32)));
+    typedef int64_t M4 __attribute__((vector_size(32)));
+    // (Built as vectors: scalars stored to an array and loaded as vectors stall the loads.)
+    M4 outside = {};
+    for (int j = 0; j < 3; ++j) {
+        const V3 &e = edges[j];
+        const double nx = j == 0 ? n.x() : 0.0, ny = j == 0 ? n.y() : 0.0, nz = j == 0 ? n.z() : 0.0;
+        const D4 x{0.0, e.z(), -e.y(), nx}, y{-e.z(), 0.0, e.x(), ny}, z{e.y(), -e.x(), 0.0, nz};
+        const D4 p0 = x * v0.x() + y * v0.y() + z * v0.z(), p1 = x * v1.x() + y * v1.y() + z * v1.z(),
+                 p2 = x * v2.x() + y * v2.y() + z * v2.z();
+        const D4 lo = p0 < p1 ? (p0 < p2 ? p0 : p2) : (p1 < p2 ? p1 : p2);
+        const D4 hi = p0 > p1 ? (p0 > p2 ? p0 : p2) : (p1 > p2 ? p1 : p2);
+        const D4 ux = x < 0.0 ? -x : x, uy = y < 0.0 ? -y : y, uz = z < 0.0 ? -z : z;
+        const D4 r = half.x() * ux + half.y() * uy + half.z() * uz;
+        outside |= (lo > r) | (hi < -r);
     }
-    // 3. The nine cross products of triangle edges and box axes.
-    for (const V3 &e : edges)
-        if (edgeSeparates(0, e) || edgeSeparates(1, e) || edgeSeparates(2, e)) return false;
-    return true;
+    const bool separated = (outside[0] | outside[1] | outside[2] | outside[3]) != 0;
+    return !separated;
 }
 
 } // namespace nori
