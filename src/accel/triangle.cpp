@@ -77,15 +77,17 @@ void TriangleStore::reset(Intersector kind, size_t words) {
 namespace {
 /// A leaf's triangle in the chunk order: three times its centroid (the key: only its order
 /// matters) and its index in the leaf (`setLeaf`'s \p ids and \p bounds).
-struct Keyed {
+struct alignas(16) Keyed {
     Point3f centroid;
     uint32_t local;
 };
 
 /// A Keyed as one vector (x, y, z, local's bits), so that the selection moves it with one
-/// load and one store (as a struct, with four).
-typedef float KeyedVec __attribute__((vector_size(16), aligned(4), may_alias));
-static_assert(sizeof(Keyed) == sizeof(KeyedVec), "Keyed: (x, y, z, local) in one vector");
+/// load and one store (as a struct, with four). Its natural 16-byte alignment, which Keyed
+/// shares: a template (selectSmallest) deduces the vector type without a typedef's alignment
+/// attribute, so an under-aligned KeyedVec would reach it as a 16-byte aligned one.
+typedef float KeyedVec __attribute__((vector_size(16), may_alias));
+static_assert(sizeof(Keyed) == sizeof(KeyedVec) && alignof(Keyed) == alignof(KeyedVec), "Keyed: (x, y, z, local) in one vector");
 
 inline uint32_t localOf(const KeyedVec &k) {
     uint32_t i;
