@@ -10,6 +10,7 @@
 /// --benchmark_repetitions=N for spread; no assertion is made on any time.
 #include "accel/triangle.h"
 #include <benchmark/benchmark.h>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -23,7 +24,7 @@ struct ListCase {
     std::vector<Ray3f> rays;
     std::vector<TriangleRay> triangleRays;
 
-    ListCase(uint32_t n, bool aimed) {
+    ListCase(uint32_t n, bool aimed, int count = 4096) {
         std::mt19937 rng(20261201u);
         std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
         std::vector<std::array<Point3f, 3>> corners(n);
@@ -35,7 +36,7 @@ struct ListCase {
         for (uint32_t i = 0; i < n; ++i) ids[i] = i;
         store.reset(Intersector::Watertight, TriangleStore::leafWords(n));
         store.setLeaf(0, ids.data(), n, corners);
-        for (int k = 0; k < 4096; ++k) {
+        for (int k = 0; k < count; ++k) {
             const Point3f origin(20.0f * uniform(rng), 20.0f * uniform(rng), 30.0f);
             const auto &t = corners[size_t(k) % n];
             // Aimed: through a triangle's centroid. Otherwise far beside the cube.
@@ -60,6 +61,40 @@ void listTest(benchmark::State &state) {
     state.counters["hits_per_list"] = benchmark::Counter(double(hits), benchmark::Counter::kAvgIterations);
 }
 BENCHMARK(listTest)->ArgNames({"triangles", "aimed"})->ArgsProduct({{2, 8, 16, 64, 128}, {0, 1}});
+
+/// Lists taken in a random order: what the branches inside a list test cost when they cannot
+/// be learnt from the previous call (as in a traversal, where each list differs from the last),
+/// against the same cases taken one at a time above. Arguments: sizes (0: 2 to 128 mixed, else
+/// that size only) and aimed (0: misses, 1: hits, 2: both mixed).
+void mixedLists(benchmark::State &state) {
+    const uint32_t only = uint32_t(state.range(0));
+    const int aimedMode = int(state.range(1));
+    std::vector<std::unique_ptr<ListCase>> cases;
+    std::vector<uint32_t> sizes;
+    for (uint32_t n : {2u, 8u, 16u, 64u, 128u}) {
+        if (only && n != only) continue;
+        for (bool aimed : {false, true}) {
+            if ((aimedMode == 0 && aimed) || (aimedMode == 1 && !aimed)) continue;
+            cases.push_back(std::make_unique<ListCase>(n, aimed, 256));
+            sizes.push_back(n);
+        }
+    }
+    std::mt19937 rng(7);
+    std::vector<uint8_t> order(8192);
+    for (uint8_t &o : order) o = uint8_t(rng() % cases.size());
+    size_t k = 0;
+    for (auto _ : state) {
+        const size_t which = order[k & 8191u];
+        const ListCase &c = *cases[which];
+        const size_t r = (k >> 3) & 255u;
+        Hit hit;
+        hit.t = c.rays[r].maxt;
+        benchmark::DoNotOptimize(c.store.intersect(c.triangleRays[r], 0, sizes[which], hit));
+        benchmark::DoNotOptimize(hit);
+        ++k;
+    }
+}
+BENCHMARK(mixedLists)->ArgNames({"size", "aimed"})->ArgsProduct({{0, 8, 64}, {0, 1, 2}});
 
 void triangleRaySetup(benchmark::State &state) {
     const ListCase c(2, false);

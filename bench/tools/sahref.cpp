@@ -12,6 +12,7 @@
 #include <scene_geometry.h>
 #include <nori/camera.h>
 #include <nori/mesh.h>
+#include <nori/objloader.h>
 #include <nori/scene.h>
 #include <algorithm>
 #include <array>
@@ -19,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <string>
 #include <vector>
 
 using namespace nori;
@@ -203,7 +205,7 @@ unsigned positiveArg(const char *text, const char *name) {
 
 int run(int argc, char **argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: nori-sahref SCENE.xml [spp (1)] [sah block size (4)] [max leaf (16)]\n"
+        std::fprintf(stderr, "usage: nori-sahref SCENE.xml|MESH.obj[.gz] [spp (1)] [sah block size (4)] [max leaf (16)]\n"
                              "  work per ray of a SAH BVH8 built by Embree, and (in a -DNORI_OCTREE_COUNTERS build) the octree's\n");
         return 2;
     }
@@ -212,10 +214,28 @@ int run(int argc, char **argv) {
     const int spp = argc > 2 ? int(positiveArg(argv[2], "spp")) : 1;
     const unsigned block = argc > 3 ? positiveArg(argv[3], "sah block size") : 4;
     const unsigned maxLeaf = argc > 4 ? positiveArg(argv[4], "max leaf") : 16;
-    std::unique_ptr<Scene> scene = loadSceneGeometry(argv[1]);
+    // A scene (its meshes and camera), or one OBJ mesh seen by nori-bench's framing camera
+    // (512 x 512, as its mesh rows).
+    const std::string input = argv[1];
+    std::unique_ptr<Scene> scene;
+    std::unique_ptr<Mesh> objMesh;
+    std::unique_ptr<Camera> framing;
     std::vector<const Mesh *> meshes;
-    for (const auto &m : scene->meshes()) meshes.push_back(m.get());
+    auto endsWith = [&](const char *tail) {
+        const std::string t = tail;
+        return input.size() > t.size() && input.compare(input.size() - t.size(), t.size(), t) == 0;
+    };
+    if (endsWith(".obj") || endsWith(".obj.gz")) {
+        objMesh = std::make_unique<Mesh>(loadObjFile(input), "mesh");
+        meshes.push_back(objMesh.get());
+    } else {
+        scene = loadSceneGeometry(input);
+        for (const auto &m : scene->meshes()) meshes.push_back(m.get());
+    }
     MeshTable table(meshes);
+    if (table.triangleCount() == 0) throw NoriException("{}: no triangles", input);
+    if (objMesh) framing = framingCamera(table.bbox(), 512, 512);
+    const Camera &camera = objMesh ? *framing : scene->camera();
     RefTree tree;
     buildReference(meshes, block, maxLeaf, tree);
     std::printf("reference SAH tree (block %u, max leaf %u): %zu nodes, %zu leaves, %zu triangles\n", block, maxLeaf,
@@ -225,7 +245,7 @@ int run(int argc, char **argv) {
     for (const Mesh *m : meshes) octree.addMesh(m);
     octree.build();
     ClosestHitFunction octHit = [&](const Ray3f &r, Hit &h) { return octree.intersect(r, h); };
-    std::vector<Ray3f> primary = cameraRays(scene->camera(), spp, 0x6e6f7269u);
+    std::vector<Ray3f> primary = cameraRays(camera, spp, 0x6e6f7269u);
     std::vector<Ray3f> diffuse = diffuseRays(primary, octHit, table, 0x62656e63u);
     std::vector<Ray3f> shadow = lightShadowRays(primary, octHit, table, lightAbove(table.bbox()));
     auto report = [&](const char *name, const std::vector<Ray3f> &rays, bool anyHit) {
