@@ -18,13 +18,14 @@ using namespace nori;
 
 namespace {
 
-/// One leaf of \p n triangles and 4096 rays, built once per case.
+/// One leaf of \p n triangles and \p count rays, built once per case.
 struct ListCase {
+    uint32_t n;
     TriangleStore store;
     std::vector<Ray3f> rays;
     std::vector<TriangleRay> triangleRays;
 
-    ListCase(uint32_t n, bool aimed, int count = 4096) {
+    ListCase(uint32_t triangles, bool aimed, int count = 4096) : n(triangles) {
         std::mt19937 rng(20261201u);
         std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
         std::vector<std::array<Point3f, 3>> corners(n);
@@ -70,13 +71,11 @@ void mixedLists(benchmark::State &state) {
     const uint32_t only = uint32_t(state.range(0));
     const int aimedMode = int(state.range(1));
     std::vector<std::unique_ptr<ListCase>> cases;
-    std::vector<uint32_t> sizes;
     for (uint32_t n : {2u, 8u, 16u, 64u, 128u}) {
         if (only && n != only) continue;
         for (bool aimed : {false, true}) {
             if ((aimedMode == 0 && aimed) || (aimedMode == 1 && !aimed)) continue;
             cases.push_back(std::make_unique<ListCase>(n, aimed, 256));
-            sizes.push_back(n);
         }
     }
     std::mt19937 rng(7);
@@ -84,12 +83,11 @@ void mixedLists(benchmark::State &state) {
     for (uint8_t &o : order) o = uint8_t(rng() % cases.size());
     size_t k = 0;
     for (auto _ : state) {
-        const size_t which = order[k & 8191u];
-        const ListCase &c = *cases[which];
+        const ListCase &c = *cases[order[k & 8191u]];
         const size_t r = (k >> 3) & 255u;
         Hit hit;
         hit.t = c.rays[r].maxt;
-        benchmark::DoNotOptimize(c.store.intersect(c.triangleRays[r], 0, sizes[which], hit));
+        benchmark::DoNotOptimize(c.store.intersect(c.triangleRays[r], 0, c.n, hit));
         benchmark::DoNotOptimize(hit);
         ++k;
     }
