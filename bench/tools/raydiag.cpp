@@ -147,6 +147,9 @@ int run(int argc, char **argv) {
                         double(g_octreeCounters.wideNodes) / n, double(g_octreeCounters.keptTris) / n, double(g_octreeCounters.leaves) / n,
                         double(g_octreeCounters.leafTris) / n, double(g_octreeCounters.chunks) / n,
                         double(g_octreeCounters.exactT) / n);
+            std::printf("         kernel steps %.2f, with a lane inside a triangle %.2f, with a hit in range %.2f\n",
+                        double(g_octreeCounters.steps) / n, double(g_octreeCounters.stepsInside) / n,
+                        double(g_octreeCounters.stepsHit) / n);
             std::printf("         kept lists %.2f, their chunks %.2f | leaves/chunks by leaf size (<=16, 32, 64, 128, 256, more):",
                         double(g_octreeCounters.keptLists) / n, double(g_octreeCounters.keptChunks) / n);
             for (int b = 0; b < 6; ++b)

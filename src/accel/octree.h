@@ -298,6 +298,9 @@ struct OctreeCounters {
     uint64_t nodes = 0, keptTris = 0, leaves = 0, leafTris = 0;
     uint64_t wideNodes = 0;  ///< of nodes, the folded tree's wide ones
     uint64_t chunks = 0, exactT = 0;  ///< triangle spans tested (up to 16: a small list, a block or a pair of blocks), t recomputed in double (lanes)
+    /// Kernel steps (L lanes each), those with a lane past the edge test (inside the triangle:
+    /// the division and the t checks follow), and those with a lane hit in range.
+    uint64_t steps = 0, stepsInside = 0, stepsHit = 0;
     uint64_t keptLists = 0, keptChunks = 0;  ///< kept lists tested, and their chunks
     /// Leaves tested and their chunks, by leaf size: up to 16, 32, 64, 128, 256 triangles, more.
     uint64_t leavesBySize[6] = {}, chunksBySize[6] = {};

@@ -436,6 +436,7 @@ template <int L, bool kAnyHit = false>
     F u = (tx * px + ty * py + tz * pz) * invDet;
     // Reject u < 0 or u > 1 (ordered compares: a NaN is rejected by the t test below).
     valid = valid & ~((u < 0.0f) | (u > 1.0f));
+    NORI_TRIANGLE_COUNT(steps, 1);
     if (!any(valid)) return {u, u, u, valid};  // most steps: every lane fails already
     F qx = ty * e1z - tz * e1y;
     F qy = tz * e1x - tx * e1z;
@@ -444,6 +445,7 @@ template <int L, bool kAnyHit = false>
     valid = valid & ~((v < 0.0f) | (u + v > 1.0f));
     F t = (e2x * qx + e2y * qy + e2z * qz) * invDet;
     VMask<L> known{};
+    NORI_TRIANGLE_COUNT(stepsInside, any(valid));
     if (any(valid)) {
         const F e1 = max(max(abs(e1x), abs(e1y)), abs(e1z)), e2 = max(max(abs(e2x), abs(e2y)), abs(e2z));
         const F w = max(max(abs(tx), abs(ty)), abs(tz));
@@ -461,13 +463,17 @@ template <int L, bool kAnyHit = false>
             const VMask<L> inside = (u > bound) & (v > bound) & (F(1.0f) - (u + v) > bound);
             if constexpr (kAnyHit) {
                 const VMask<L> sure = surelyInRange(valid & inside, t, err, r.mint, maxt);
-                if (any(sure)) return {t, u, v, sure};
+                if (any(sure)) {
+                    NORI_TRIANGLE_COUNT(stepsHit, 1);
+                    return {t, u, v, sure};
+                }
             }
             t = exactPlaneT(redo, inside, r, rows, n, i, t, skipPrim);
             known = redo & inside;
         }
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
+    NORI_TRIANGLE_COUNT(stepsHit, any(valid));
     return {t, u, v, valid, known};
 }
 
@@ -568,6 +574,7 @@ template <int L, bool kAnyHit = false>
     // hides the one before it): such a lane is not surely missed and the tests below decide it.
     const F hi = max(max(U, V), W), lo = min(min(U, V), W);
     VMask<L> valid = m & ~((hi > bound) & (lo < negBound));
+    NORI_TRIANGLE_COUNT(steps, 1);
     if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
     // Surely hit (crossing strictly inside): three signs surely equal, i.e. the smallest edge
     // function above the bound or the largest below minus it, where none is a NaN (their sum is
@@ -589,6 +596,7 @@ template <int L, bool kAnyHit = false>
         det = U + V + W;
     }
     valid = valid & (det != 0.0f);
+    NORI_TRIANGLE_COUNT(stepsInside, any(valid));
     const F za = sz * az, zb = sz * bz, zc = sz * cz;
     F T = U * za + V * zb + W * zc;
     F invDet = F(1.0f) / det;
@@ -615,7 +623,10 @@ template <int L, bool kAnyHit = false>
             // (inside excludes the lanes decided exactly: their t is not the corners'.)
             if constexpr (kAnyHit) {
                 const VMask<L> sure = surelyInRange(valid & inside, t, err, r.mint, maxt);
-                if (any(sure)) return {t, V * invDet, W * invDet, sure};
+                if (any(sure)) {
+                    NORI_TRIANGLE_COUNT(stepsHit, 1);
+                    return {t, V * invDet, W * invDet, sure};
+                }
             }
             // A triangle square to the ray's dominant axis (its corners' z equal: a wall faced,
             // a floor seen from above) keeps its float t, whatever the estimate says: t is then z
@@ -633,6 +644,7 @@ template <int L, bool kAnyHit = false>
         }
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
+    NORI_TRIANGLE_COUNT(stepsHit, any(valid));
     return {t, V * invDet, W * invDet, valid, known};
 }
 
