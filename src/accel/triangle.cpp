@@ -436,7 +436,6 @@ template <int L, bool kAnyHit = false>
     F u = (tx * px + ty * py + tz * pz) * invDet;
     // Reject u < 0 or u > 1 (ordered compares: a NaN is rejected by the t test below).
     valid = valid & ~((u < 0.0f) | (u > 1.0f));
-    NORI_TRIANGLE_COUNT(steps, 1);
     if (!any(valid)) return {u, u, u, valid};  // most steps: every lane fails already
     F qx = ty * e1z - tz * e1y;
     F qy = tz * e1x - tx * e1z;
@@ -463,17 +462,13 @@ template <int L, bool kAnyHit = false>
             const VMask<L> inside = (u > bound) & (v > bound) & (F(1.0f) - (u + v) > bound);
             if constexpr (kAnyHit) {
                 const VMask<L> sure = surelyInRange(valid & inside, t, err, r.mint, maxt);
-                if (any(sure)) {
-                    NORI_TRIANGLE_COUNT(stepsHit, 1);
-                    return {t, u, v, sure};
-                }
+                if (any(sure)) return {t, u, v, sure};
             }
             t = exactPlaneT(redo, inside, r, rows, n, i, t, skipPrim);
             known = redo & inside;
         }
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
-    NORI_TRIANGLE_COUNT(stepsHit, any(valid));
     return {t, u, v, valid, known};
 }
 
@@ -574,7 +569,6 @@ template <int L, bool kAnyHit = false>
     // hides the one before it): such a lane is not surely missed and the tests below decide it.
     const F hi = max(max(U, V), W), lo = min(min(U, V), W);
     VMask<L> valid = m & ~((hi > bound) & (lo < negBound));
-    NORI_TRIANGLE_COUNT(steps, 1);
     if (!any(valid)) return {U, V, W, valid};  // most steps: the ray passes beside every triangle
     // Surely hit (crossing strictly inside): three signs surely equal, i.e. the smallest edge
     // function above the bound or the largest below minus it, where none is a NaN (their sum is
@@ -623,10 +617,7 @@ template <int L, bool kAnyHit = false>
             // (inside excludes the lanes decided exactly: their t is not the corners'.)
             if constexpr (kAnyHit) {
                 const VMask<L> sure = surelyInRange(valid & inside, t, err, r.mint, maxt);
-                if (any(sure)) {
-                    NORI_TRIANGLE_COUNT(stepsHit, 1);
-                    return {t, V * invDet, W * invDet, sure};
-                }
+                if (any(sure)) return {t, V * invDet, W * invDet, sure};
             }
             // A triangle square to the ray's dominant axis (its corners' z equal: a wall faced,
             // a floor seen from above) keeps its float t, whatever the estimate says: t is then z
@@ -644,8 +635,17 @@ template <int L, bool kAnyHit = false>
         }
     }
     valid = valid & (t >= r.mint) & (t <= maxt);
-    NORI_TRIANGLE_COUNT(stepsHit, any(valid));
     return {t, V * invDet, W * invDet, valid, known};
+}
+
+/// \p s, counted in a measuring build as a kernel step (with a hit, if it has one).
+template <int L>
+[[gnu::always_inline]] inline Step<L> counted(Step<L> s) {
+#ifdef NORI_OCTREE_COUNTERS
+    g_octreeCounters.steps += 1;
+    g_octreeCounters.stepsHit += any(s.hit);
+#endif
+    return s;
 }
 
 /// One step of the chosen kernel. With \p kAnyHit (an occlusion query) the step may stop at
@@ -654,8 +654,8 @@ template <int L, bool kAnyHit = false>
 [[gnu::always_inline]] inline Step<L> testStep(Intersector kind, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
                                                uint32_t end, float maxt, uint32_t skipPrim = ~0u) {
     const VMask<L> m = VMask<L>::firstN(end - i);
-    return kind == Intersector::MT ? mollerTrumbore<L, kAnyHit>(r, rows, n, i, m, maxt, skipPrim)
-                                   : watertight<L, kAnyHit>(r, rows, n, i, m, maxt, skipPrim);
+    return counted(kind == Intersector::MT ? mollerTrumbore<L, kAnyHit>(r, rows, n, i, m, maxt, skipPrim)
+                                           : watertight<L, kAnyHit>(r, rows, n, i, m, maxt, skipPrim));
 }
 
 /// Whether triangles [first, end) of a leaf (a small leaf or kept list, a leaf's tail, one
