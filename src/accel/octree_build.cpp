@@ -585,10 +585,11 @@ __attribute__((noinline)) unsigned refine(const std::array<Point3f, 3> &v, const
                             classifier.cellsHolding(v[2], cell.min, cell.max));
     unsigned m = mask & ~kept;
     if (!m) return kept;
-    const int plane = axisAlignedPlane(v[0], v[1], v[2]);
+    // (The triangle's edges and axes once, for all the cells it is tested against.)
+    const TriangleBoxTest sat(v[0], v[1], v[2], axisAlignedPlane(v[0], v[1], v[2]));
     for (; m; m &= m - 1) {
         int c = __builtin_ctz(m);
-        if (triangleOverlapsBox(v[0], v[1], v[2], cells[c], plane)) kept |= 1u << c;
+        if (sat.overlaps(cells[c])) kept |= 1u << c;
     }
     return kept ? kept : mask;  // never lose a triangle to rounding
 }
