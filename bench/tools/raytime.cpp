@@ -2,9 +2,10 @@
 /// \brief nori-raytime: builds the default octree of a scene and traces one of the bench's ray
 /// sets (primary, diffuse or shadow) repeatedly, for a profiler (perf, callgrind).
 /// Environment: NORI_LEAFSIZE=N sets leafSize; NORI_AB=PROP times the octree with the boolean
-/// property PROP on against off, side by side in one run, and prints the ratio; NORI_EMBREE=1
-/// times Embree's default mode on the same rays (or its build, for the set `build`) instead of
-/// the octree (a peer for a profiler).
+/// property PROP on against off, side by side in one run (the rays in alternating slices, or
+/// the builds in turn), and prints the ratio; NORI_AB=embree the same for the octree against
+/// Embree's default mode; NORI_EMBREE=1 times Embree's default mode on the same rays (or its
+/// build, for the set `build`) instead of the octree (a peer for a profiler).
 #include "accel/octree.h"
 #include "embree_accel.h"
 #include "tool_main.h"
@@ -39,7 +40,15 @@ int run(int argc, char **argv) {
     // One thread, as nori-bench --threads 1 (the build's tasks would run on other threads).
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
     const std::string set = argv[2];
+    if (set != "primary" && set != "diffuse" && set != "shadow" && set != "build") {
+        std::fprintf(stderr, "nori-raytime: unknown set '%s' (primary, diffuse, shadow or build)\n", argv[2]);
+        return 2;
+    }
     const int repeats = argc > 3 ? std::atoi(argv[3]) : 10;
+    if (repeats < 1) {
+        std::fprintf(stderr, "nori-raytime: repeats must be a positive integer, not '%s'\n", argv[3]);
+        return 2;
+    }
     const int spp = argc > 4 ? std::atoi(argv[4]) : 4;
     std::unique_ptr<Scene> scene = loadSceneGeometry(argv[1]);
     std::vector<const Mesh *> meshes;
@@ -61,6 +70,46 @@ int run(int argc, char **argv) {
     auto t0 = cpuNs();
     octree.build();
     auto t1 = cpuNs();
+    // NORI_AB: two contenders, A and B, timed in turn in one process (A B B A), so that the
+    // machine's drift, which moves separate processes by up to a factor of 1.8 on a shared
+    // machine, hits both alike.
+    const char *abName = std::getenv("NORI_AB");
+    const bool abEmbree = abName && std::string(abName) == "embree";
+    auto makeContender = [&](bool first) -> std::unique_ptr<Accel> {
+        if (abEmbree) {
+            if (!first) return makeEmbree();
+            auto o = std::make_unique<OctreeAccel>(props);
+            for (const Mesh *m : meshes) o->addMesh(m);
+            return o;
+        }
+        PropertyList p = props;
+        p.setBoolean(abName, first);
+        auto o = std::make_unique<OctreeAccel>(p);
+        for (const Mesh *m : meshes) o->addMesh(m);
+        return o;
+    };
+    const std::string nameA = abEmbree ? "octree" : std::string(abName ? abName : "") + "=true";
+    const std::string nameB = abEmbree ? "embree" : std::string(abName ? abName : "") + "=false";
+    if (set == "build" && abName) {
+        // Builds of A and B in turn, \p repeats rounds of A B B A: the medians and the ratio
+        // of the summed times.
+        std::vector<double> ms[2];
+        for (int k = 0; k < repeats; ++k)
+            for (const int which : {0, 1, 1, 0}) {
+                std::unique_ptr<Accel> accel = makeContender(which == 0);
+                const double b0 = cpuNs();
+                accel->build();
+                ms[which].push_back((cpuNs() - b0) * 1e-6);
+            }
+        double sum[2] = {0, 0};
+        for (int w = 0; w < 2; ++w) {
+            for (double x : ms[w]) sum[w] += x;
+            std::sort(ms[w].begin(), ms[w].end());
+        }
+        std::printf("build %s median %.2f ms, %s median %.2f ms, ratio %.3f (%zu builds each)\n", nameA.c_str(),
+                    ms[0][ms[0].size() / 2], nameB.c_str(), ms[1][ms[1].size() / 2], sum[0] / sum[1], ms[0].size());
+        return 0;
+    }
     if (set == "build") {
         // The build alone, \p repeats times: the median thread CPU time (of Embree's default
         // mode with NORI_EMBREE, as the rays below).
@@ -89,28 +138,20 @@ int run(int argc, char **argv) {
                               : set == "diffuse" ? diffuseRays(primary, hit, table, 0x62656e63u)
                                                  : lightShadowRays(primary, hit, table, lightAbove(table.bbox()));
     const bool shadow = set == "shadow";
-    if (const char *name = std::getenv("NORI_AB")) {
-        // A/B in one process: the boolean property NORI_AB on (A) and off (B), over the same
-        // rays in alternating slices (A B B A), so that the machine's drift hits both alike.
-        PropertyList pa = props, pb = props;
-        pa.setBoolean(name, true);
-        pb.setBoolean(name, false);
-        OctreeAccel a{pa}, b{pb};
-        for (const Mesh *m : meshes) {
-            a.addMesh(m);
-            b.addMesh(m);
-        }
-        a.build();
-        b.build();
-        const OctreeAccel *order[4] = {&a, &b, &b, &a};
+    if (abName) {
+        // A and B over the same rays in alternating slices (A B B A).
+        std::unique_ptr<Accel> a = makeContender(true), b = makeContender(false);
+        a->build();
+        b->build();
+        const Accel *order[4] = {a.get(), b.get(), b.get(), a.get()};
         double ns[2] = {0, 0};
         size_t found[2] = {0, 0};
         constexpr size_t kSlice = 8192;
         for (int k = 0; k < repeats; ++k)
             for (size_t first = 0; first < rays.size(); first += kSlice) {
                 const size_t last = std::min(rays.size(), first + kSlice);
-                for (const OctreeAccel *accel : order) {
-                    const int which = accel == &a ? 0 : 1;
+                for (const Accel *accel : order) {
+                    const int which = accel == a.get() ? 0 : 1;
                     const double s0 = cpuNs();
                     for (size_t i = first; i < last; ++i) {
                         Hit h;
@@ -119,8 +160,15 @@ int run(int argc, char **argv) {
                     ns[which] += cpuNs() - s0;
                 }
             }
-        std::printf("%s=true %.1f ns/ray, %s=false %.1f ns/ray, ratio %.3f (%s)\n", name, ns[0] / (2.0 * rays.size() * repeats),
-                    name, ns[1] / (2.0 * rays.size() * repeats), ns[0] / ns[1], found[0] == found[1] ? "same hits" : "HITS DIFFER");
+        std::printf("%s %.1f ns/ray, %s %.1f ns/ray, ratio %.3f", nameA.c_str(), ns[0] / (2.0 * rays.size() * repeats),
+                    nameB.c_str(), ns[1] / (2.0 * rays.size() * repeats), ns[0] / ns[1]);
+        if (abEmbree) {
+            // (Embree's default mode misses or finds a few rays differently: not an error here.)
+            std::printf(" (speed %.2fx Embree's; hits %zu and %zu)\n", ns[1] / ns[0], found[0], found[1]);
+            return 0;
+        }
+        // Two octrees must agree on every ray.
+        std::printf(" (%s)\n", found[0] == found[1] ? "same hits" : "HITS DIFFER");
         return found[0] == found[1] ? 0 : 1;
     }
     // NORI_EMBREE: the same rays through Embree's default mode (one thread).
