@@ -140,6 +140,47 @@ TEST(OctreeCells, SeparatingAxisTestAgreesWithClipping) {
     EXPECT_GT(flatMisses, 500);
 }
 
+// One prepared triangle (TriangleBoxTest, as refine() uses it) against the eight octants of a
+// box in turn: each answer must agree with clipping as above, whatever boxes came before.
+TEST(OctreeCells, PreparedTriangleAgreesWithClippingOnEveryCell) {
+    pcg32 rng(12);
+    auto u = [&] { return float(rng() >> 8) * 0x1p-24f; };
+    int overlaps = 0, misses = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        Point3f lo(u() * 2 - 1, u() * 2 - 1, u() * 2 - 1);
+        Vector3f size(0.1f + u(), 0.1f + u(), 0.1f + u());
+        BoundingBox3f box(lo, lo + size);
+        Point3f v[3];
+        for (Point3f &p : v) p = box.center() + 0.6f * Vector3f(size.x() * (u() * 2 - 1), size.y() * (u() * 2 - 1), size.z() * (u() * 2 - 1));
+        if (trial % 4 == 1) {  // in an axis-aligned plane
+            const int a = (trial / 4) % 3;
+            v[0][a] = v[1][a] = v[2][a] = lo[a] + size[a] * u();
+        }
+        const TriangleBoxTest sat(v[0], v[1], v[2], axisAlignedPlane(v[0], v[1], v[2]));
+        const Point3f mid = box.center();
+        for (int c = 0; c < 8; ++c) {
+            Point3f clo, chi;
+            for (int a = 0; a < 3; ++a) {
+                const bool upper = (c >> a) & 1;
+                clo[a] = upper ? mid[a] : box.min[a];
+                chi[a] = upper ? box.max[a] : mid[a];
+            }
+            const BoundingBox3f cell(clo, chi);
+            const Vector3f m = 1e-4f * (chi - clo);
+            if (clipsToBox(v[0], v[1], v[2], BoundingBox3f(clo + m, chi - m))) {
+                ++overlaps;
+                EXPECT_TRUE(sat.overlaps(cell)) << "trial " << trial << ", cell " << c << ": a triangle reaching into it was rejected";
+            } else if (!clipsToBox(v[0], v[1], v[2], BoundingBox3f(clo - m, chi + m))) {
+                ++misses;
+                EXPECT_FALSE(sat.overlaps(cell)) << "trial " << trial << ", cell " << c << ": a triangle missing it was accepted";
+            }
+        }
+    }
+    std::printf("[structure] prepared triangle, eight cells each: %d overlaps, %d misses\n", overlaps, misses);
+    EXPECT_GT(overlaps, 4000);
+    EXPECT_GT(misses, 4000);
+}
+
 // The `sah` rule's children tile their cell, and no child is less cubic than its parent or
 // than 2:1: cells never become the thin slabs that every triangle crosses.
 TEST(OctreeCells, ChildrenTileTheCellAndStayNearCubic) {
