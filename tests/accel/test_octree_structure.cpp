@@ -151,7 +151,8 @@ TEST(OctreeCells, PreparedTriangleAgreesWithClippingOnEveryCell) {
         Vector3f size(0.1f + u(), 0.1f + u(), 0.1f + u());
         BoundingBox3f box(lo, lo + size);
         Point3f v[3];
-        for (Point3f &p : v) p = box.center() + 0.6f * Vector3f(size.x() * (u() * 2 - 1), size.y() * (u() * 2 - 1), size.z() * (u() * 2 - 1));
+        for (Point3f &p : v)
+            p = box.center() + 0.6f * Vector3f(size.x() * (u() * 2 - 1), size.y() * (u() * 2 - 1), size.z() * (u() * 2 - 1));
         if (trial % 4 == 1) {  // in an axis-aligned plane
             const int a = (trial / 4) % 3;
             v[0][a] = v[1][a] = v[2][a] = lo[a] + size[a] * u();
@@ -169,10 +170,12 @@ TEST(OctreeCells, PreparedTriangleAgreesWithClippingOnEveryCell) {
             const Vector3f m = 1e-4f * (chi - clo);
             if (clipsToBox(v[0], v[1], v[2], BoundingBox3f(clo + m, chi - m))) {
                 ++overlaps;
-                EXPECT_TRUE(sat.overlaps(cell)) << "trial " << trial << ", cell " << c << ": a triangle reaching into it was rejected";
+                EXPECT_TRUE(sat.overlaps(cell)) << "trial " << trial << ", cell " << c
+                                                << ": a triangle reaching into it was rejected";
             } else if (!clipsToBox(v[0], v[1], v[2], BoundingBox3f(clo - m, chi + m))) {
                 ++misses;
-                EXPECT_FALSE(sat.overlaps(cell)) << "trial " << trial << ", cell " << c << ": a triangle missing it was accepted";
+                EXPECT_FALSE(sat.overlaps(cell)) << "trial " << trial << ", cell " << c
+                                                 << ": a triangle missing it was accepted";
             }
         }
     }
