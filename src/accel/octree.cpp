@@ -66,12 +66,12 @@ OctreeAccel::OctreeAccel(const PropertyList &props) {
     m_overlap = parseOverlap(props);
     m_traversal = parseTraversal(props);
     m_intersector = parseIntersector(props, "watertight");
-    // Wide nodes pay where one instruction tests their sixteen boxes (AVX-512: 0.89-0.97x the
-    // unfolded tree's ray time on the shapes that fold, bench/README.md). With eight lanes
-    // they take two blocks and a two-register lookup per box bound: measured slower than the
-    // chain of nodes they replace (AVX2, clutter primary 1.08x; eight-slot wide nodes, which
-    // fit one block, fold too little to matter: 0.99-1.01x). Tests turn it on at every width.
-    m_fold = props.getBoolean("fold", lanes::kMaxLanes >= OctreeWideNode::kSlots);
+    // Wide nodes pay where the node test is a vector test: on AVX-512 (one instruction for
+    // the sixteen boxes) 0.89-0.97x the unfolded tree's ray time on the shapes that fold; on
+    // AVX2 (two eight-lane blocks) 0.86-0.97x on tabletop, clutter, room, stadium, turned
+    // heightfield, with one loss (sparse shadow rays, 1.09-1.12x; bench/README.md, rounds 8
+    // and 31). On one lane the cells are a loop either way. Tests turn it on at every width.
+    m_fold = props.getBoolean("fold", lanes::kMaxLanes >= 8);
     // Off: the plain surface-area cost, for comparison (bench/README.md, twelfth round).
     m_termination = props.getBoolean("termination", true);
     // Off: the greedy leaf-or-split rule alone (bench/README.md, twenty-second round).

@@ -106,7 +106,7 @@ static_assert(OctreeKept::kMaxGroups <= 8, "OctreeKeptSet holds eight groups");
 /// \brief Octree accelerator. Properties: `buildRule` (sah* | count | seed), `maxDepth`,
 /// `leafSize` (a node with fewer triangles is a leaf), `overlap` (bbox | exact*), `traversal`
 /// (seed | sorted | simd*), `intersector` (mt | watertight*), `fold` (whether the simd
-/// traversals use wide nodes, see fold(); default: where the machine tests 16 lanes at once),
+/// traversals use wide nodes, see fold(); default: where the node test is a vector test, 8 or 16 lanes),
 /// `termination` (`sah` only, true*: whether the cost model counts the rays that stop in a
 /// nearer child before reaching a farther one), `lookahead` (`sah` only, true*: whether a split
 /// that the cost model rejects because of one child's price as a leaf is built anyway and
