@@ -279,20 +279,20 @@ struct CellRay {
             // Several blocks: all cells in the node's order first (plain loads, no lookups
             // per box bound), their hits as bits and their entry distances in \p entries; then
             // block by block in the ray's order, each lane looking up its cell's bit and entry.
-            alignas(64) float entries[S];
+            [[maybe_unused]] alignas(64) float entries[S];
             uint32_t hitCells = 0;
             for (int first = 0; first < S; first += L) {
                 F t0, t1;
                 slabs(first, t0, t1);
                 hitCells |= bits(t0 <= t1) << first;
-                t0.storeu(entries + first);
+                if constexpr (kEntries) t0.storeu(entries + first);
             }
             if (hitCells == 0) return -1;
             if (!(hitCells & (hitCells - 1))) {  // one cell: as above
                 const int only = __builtin_ctz(hitCells);
                 nearChild = cellChild[only];
                 nearCount = cellCount[only];
-                entry = F(entries[only]);
+                if constexpr (kEntries) entry = F(entries[only]);
                 nearLane = 0;
                 return 0;
             }
@@ -302,14 +302,19 @@ struct CellRay {
                 const unsigned hit = lanes::bitsAt(hitCells, c);
                 if (hit == 0) continue;
                 lanes::compressStoreBits(hit, lookupCells<S>(cellChild, c), child + k);
-                lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
-                k += lanes::compressStoreBits(hit, lookupCells<S>(static_cast<const float *>(entries), c), tnear + k);
+                // (An any-hit query needs no entry distances: neither their lookup nor their store.)
+                if constexpr (kEntries) {
+                    lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
+                    k += lanes::compressStoreBits(hit, lookupCells<S>(static_cast<const float *>(entries), c), tnear + k);
+                } else {
+                    k += lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
+                }
             }
             // The last one pushed is the nearest.
             --k;
             nearChild = child[k];
             nearCount = count[k];
-            entry = F(tnear[k]);
+            if constexpr (kEntries) entry = F(tnear[k]);
             nearLane = 0;
             return k;
         }
