@@ -302,13 +302,11 @@ struct CellRay {
                 const unsigned hit = lanes::bitsAt(hitCells, c);
                 if (hit == 0) continue;
                 lanes::compressStoreBits(hit, lookupCells<S>(cellChild, c), child + k);
+                const int pushed = lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
                 // (An any-hit query needs no entry distances: neither their lookup nor their store.)
-                if constexpr (kEntries) {
-                    lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
-                    k += lanes::compressStoreBits(hit, lookupCells<S>(static_cast<const float *>(entries), c), tnear + k);
-                } else {
-                    k += lanes::compressStoreBits(hit, lookupCells<S>(cellCount, c), count + k);
-                }
+                if constexpr (kEntries)
+                    lanes::compressStoreBits(hit, lookupCells<S>(static_cast<const float *>(entries), c), tnear + k);
+                k += pushed;
             }
             // The last one pushed is the nearest.
             --k;
