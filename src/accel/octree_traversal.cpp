@@ -427,6 +427,11 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     alignas(64) float stackT[kStackSize + kStackSlack];
     uint32_t child = m_rootChild, count = m_rootCount;
     int sp = 0;
+    // Boxes entered beyond this are culled: tri.cullLimit(best.t), updated where best changes
+    // (a list test that finds a closer hit) rather than recomputed from best.t, which lives in
+    // memory (the list tests update it), on every visit and pop: up to 6 % faster on primary
+    // and diffuse rays (bench/README.md, thirty-second round).
+    float limit = tri.cullLimit(best.t);
     for (;;) {
         if (count & OctreeNode::kInner) {
             NORI_OCTREE_COUNT(nodes, 1);
@@ -436,7 +441,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             WideRay::F wideEntry;
             int nearLane = 0;
             const bool wide = count & OctreeNode::kWide;
-            const float maxt = tri.cullLimit(best.t);
+            const float maxt = limit;
             int pushed = wide ? wide_.push(m_wide[child], ray.mint, maxt, stackChild + sp, stackCount + sp, stackT + sp,
                                            nearChild, nearCount, wideEntry, nearLane)
                               : simd.push(m_nodes[child], patternOf(count), ray.mint, maxt, stackChild + sp,
@@ -458,8 +463,9 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
                 // A group entered at tk: tested now, or waits among the children by entry.
                 auto visitGroup = [&](uint32_t offset, uint32_t n, float tk) {
                     if (!descend || tk <= tc) {
-                        countedList(true, n, [&] { return m_triangles.intersect(tri.get(), offset, n, best); });
-                        if (descend && tc > tri.cullLimit(best.t)) descend = false;  // the nearest child now lies beyond the hit
+                        if (countedList(true, n, [&] { return m_triangles.intersect(tri.get(), offset, n, best); }))
+                            limit = tri.cullLimit(best.t);
+                        if (descend && tc > limit) descend = false;  // the nearest child now lies beyond the hit
                     } else {
                         int i = sp + pushed;
                         for (; i > sp && stackT[i - 1] < tk; --i) {
@@ -477,12 +483,12 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
                 const OctreeKept &group = m_kept[nodeIndexOf(child, count)];
                 float tk;
                 if (group.set == OctreeKept::kNoSet) {  // one group
-                    if (slab.hit(group, ray.mint, tri.cullLimit(best.t), tk)) visitGroup(group.offset, group.count, tk);
+                    if (slab.hit(group, ray.mint, limit, tk)) visitGroup(group.offset, group.count, tk);
                 } else {  // several groups: one box test for all, nearest first
                     KeptEntries e;
-                    const int n = enteredGroups(m_keptSets[group.set], simd, ray.mint, tri.cullLimit(best.t), e);
+                    const int n = enteredGroups(m_keptSets[group.set], simd, ray.mint, limit, e);
                     for (int k = 0; k < n; ++k)
-                        if (e.tnear[k] <= tri.cullLimit(best.t)) visitGroup(e.offset[k], e.count[k], e.tnear[k]);
+                        if (e.tnear[k] <= limit) visitGroup(e.offset[k], e.count[k], e.tnear[k]);
                 }
             }
             sp += pushed;
@@ -492,11 +498,12 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
                 continue;
             }
         } else {
-            countedList(count & kOctreeKeptTag, count & ~kOctreeKeptTag,
-                        [&] { return m_triangles.intersect(tri.get(), child, count & ~kOctreeKeptTag, best); });
+            if (countedList(count & kOctreeKeptTag, count & ~kOctreeKeptTag,
+                            [&] { return m_triangles.intersect(tri.get(), child, count & ~kOctreeKeptTag, best); }))
+                limit = tri.cullLimit(best.t);
         }
         // Next: the top of the stack, skipping entries beyond the closest hit so far.
-        while (sp > 0 && stackT[sp - 1] > tri.cullLimit(best.t)) --sp;
+        while (sp > 0 && stackT[sp - 1] > limit) --sp;
         if (sp == 0) break;
         --sp;
         child = stackChild[sp];
