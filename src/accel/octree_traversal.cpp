@@ -446,10 +446,9 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             WideRay::F wideEntry;
             int nearLane = 0;
             const bool wide = count & OctreeNode::kWide;
-            const float maxt = limit;
-            int pushed = wide ? wide_.push(m_wide[child], ray.mint, maxt, stackChild + sp, stackCount + sp, stackT + sp,
+            int pushed = wide ? wide_.push(m_wide[child], ray.mint, limit, stackChild + sp, stackCount + sp, stackT + sp,
                                            nearChild, nearCount, wideEntry, nearLane)
-                              : simd.push(m_nodes[child], patternOf(count), ray.mint, maxt, stackChild + sp,
+                              : simd.push(m_nodes[child], patternOf(count), ray.mint, limit, stackChild + sp,
                                           stackCount + sp, stackT + sp, nearChild, nearCount, entry, nearLane);
 #ifdef NORI_OCTREE_COUNTERS
             if (g_octreeCounters.nodeVisits) ++(*g_octreeCounters.nodeVisits)[nodeIndexOf(child, count)];
