@@ -35,7 +35,7 @@ public:
 
 protected:
     void buildImpl() override {
-        // Same input rule as the octree: triangles with a non-finite corner are left out.
+        // Same input rule as the octree: triangles no ray can hit are left out.
         std::vector<std::array<Point3f, 3>> vertices(triangleCount());
         std::vector<uint32_t> prims;
         prims.reserve(triangleCount());
@@ -44,7 +44,7 @@ protected:
                 uint32_t prim = m_offsets[m] + f;
                 auto &v = vertices[prim];
                 for (int k = 0; k < 3; ++k) v[k] = m_meshes[m]->vertex(f, k);
-                if (v[0].allFinite() && v[1].allFinite() && v[2].allFinite()) prims.push_back(prim);
+                if (triangleCanBeHit(v)) prims.push_back(prim);
             }
         m_count = uint32_t(prims.size());
         m_triangles.reset(m_intersector, TriangleStore::leafWords(m_count));

@@ -55,7 +55,10 @@ bool exactEdgeVolumes(const float o[3], const float d[3], const float p[3][3], d
         const double terms = std::abs(dd[0]) * (std::abs(b[1] * c[2]) + std::abs(b[2] * c[1])) +
                              std::abs(dd[1]) * (std::abs(b[2] * c[0]) + std::abs(b[0] * c[2])) +
                              std::abs(dd[2]) * (std::abs(b[0] * c[1]) + std::abs(b[1] * c[0]));
-        settled[e] = std::abs(vol[e]) > 0x1p-49 * terms;
+        // All terms zero: each has a factor that is exactly zero (a difference of floats is
+        // zero only when they are equal, and no product of nonzero ones underflows), so the
+        // volume is exactly zero (a ray from a corner, as a shadow ray from a vertex is).
+        settled[e] = std::abs(vol[e]) > 0x1p-49 * terms || terms == 0.0;
     }
     if (settled[0] && settled[1] && settled[2]) return true;
     // Within rounding of an edge line (or the ray in the plane): exact integers.
@@ -70,6 +73,38 @@ bool exactEdgeVolumes(const float o[3], const float d[3], const float p[3][3], d
         const Int v = volume(ds, qs[(e + 1) % 3], qs[(e + 2) % 3]);
         // Rounded to double (a nonzero volume is at least 2^-447 of it: no underflow).
         vol[e] = v.is_zero() ? 0.0 : std::ldexp(v.convert_to<double>(), -447);
+    }
+    return true;
+}
+
+bool exactlyCollinear(const float p[3][3]) {
+    // Two corners that coincide (a point or a segment: common where float rounding has merged
+    // the corners of small triangles far from the origin).
+    auto same = [&](int i, int j) { return p[i][0] == p[j][0] && p[i][1] == p[j][1] && p[i][2] == p[j][2]; };
+    if (same(0, 1) || same(0, 2) || same(1, 2)) return true;
+    // Edge vectors in double: each difference within a relative 2^-53 (exact unless the
+    // exponents lie more than 29 apart); each cross product component then within 4 units of
+    // 2^-53 of its two products' magnitudes. A component beyond 2^-49 of them is nonzero.
+    double a[3], b[3];
+    for (int k = 0; k < 3; ++k) {
+        a[k] = double(p[1][k]) - double(p[0][k]);
+        b[k] = double(p[2][k]) - double(p[0][k]);
+    }
+    for (int e = 0; e < 3; ++e) {
+        const int i = (e + 1) % 3, j = (e + 2) % 3;
+        const double x = a[i] * b[j], y = a[j] * b[i];
+        if (std::abs(x - y) > 0x1p-49 * (std::abs(x) + std::abs(y))) return false;
+    }
+    // Within rounding of zero on every axis (rare: slivers and points): exact integers.
+    Int sa[3], sb[3];
+    for (int k = 0; k < 3; ++k) {
+        const Int p0 = scaled(p[0][k]);
+        sa[k] = scaled(p[1][k]) - p0;
+        sb[k] = scaled(p[2][k]) - p0;
+    }
+    for (int e = 0; e < 3; ++e) {
+        const int i = (e + 1) % 3, j = (e + 2) % 3;
+        if (sa[i] * sb[j] != sa[j] * sb[i]) return false;
     }
     return true;
 }

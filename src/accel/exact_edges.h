@@ -20,4 +20,10 @@ namespace nori {
 /// zero. Returns false when an input is not finite (no decision: a miss).
 bool exactEdgeVolumes(const float o[3], const float d[3], const float p[3][3], double vol[3]);
 
+/// \brief Whether the finite corners p[0], p[1], p[2] lie on one line (two or three of them
+/// coinciding included), decided exactly: the normal (p1 - p0) x (p2 - p0) is zero. No ray
+/// crosses such a triangle inside: its three edge volumes sum to d . n = 0 for every ray, so
+/// their signs are mixed or all zero.
+bool exactlyCollinear(const float p[3][3]);
+
 } // namespace nori

@@ -94,8 +94,8 @@ void OctreeAccel::buildImpl() {
     m_stats = Stats();
     const uint32_t total = triangleCount();
 
-    // Gather corners and bounds of every triangle; triangles with a non-finite corner can
-    // never be hit meaningfully and are left out. (The corners are appended: no pass that
+    // Gather corners and bounds of every triangle; triangles that no ray can hit (a corner
+    // not finite, or all three on one line: triangleCanBeHit) are left out. (The corners are appended: no pass that
     // zeroes them first; the references are plain data, not initialised either.)
     // (The large arrays on huge pages: see allocateLarge().)
     std::vector<std::array<Point3f, 3>, HugePageAllocator<std::array<Point3f, 3>>> vertices;
@@ -113,7 +113,7 @@ void OctreeAccel::buildImpl() {
             const uint32_t prim = m_offsets[m] + f;  // == vertices.size()
             const std::array<Point3f, 3> v{positions[faces[f][0]], positions[faces[f][1]], positions[faces[f][2]]};
             vertices.push_back(v);
-            if (!(v[0].allFinite() && v[1].allFinite() && v[2].allFinite())) continue;
+            if (!triangleCanBeHit(v)) continue;
             BoundingBox3f bounds;
             for (int k = 0; k < 3; ++k) bounds.expandBy(v[k]);
             areas[prim] = (v[1] - v[0]).cross(v[2] - v[0]).norm();

@@ -41,6 +41,12 @@ Intersector parseIntersector(const PropertyList &props, const std::string &defau
 
 const char *intersectorName(Intersector kind) { return kind == Intersector::MT ? "mt" : "watertight"; }
 
+bool triangleCanBeHit(const std::array<Point3f, 3> &v) {
+    if (!(v[0].allFinite() && v[1].allFinite() && v[2].allFinite())) return false;
+    const float p[3][3] = {{v[0].x(), v[0].y(), v[0].z()}, {v[1].x(), v[1].y(), v[1].z()}, {v[2].x(), v[2].y(), v[2].z()}};
+    return !exactlyCollinear(p);
+}
+
 TriangleRay::TriangleRay(const Ray3f &ray, float cullAbsOfRay) : cullAbs(cullAbsOfRay) {
     // Component by component: a loop over the Eigen vectors compiled to two calls of memmove.
     o[0] = ray.o.x(), o[1] = ray.o.y(), o[2] = ray.o.z();

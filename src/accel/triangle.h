@@ -32,6 +32,13 @@ Intersector parseIntersector(const PropertyList &props, const std::string &defau
 /// \brief "mt" or "watertight".
 const char *intersectorName(Intersector kind);
 
+/// \brief Whether any ray can hit the triangle with corners \p v. Not when a corner is not
+/// finite, nor when the corners lie on one line, decided exactly (exactlyCollinear(): a point,
+/// a segment; the watertight test never finds a crossing inside it). Every accelerator leaves
+/// such triangles out: no answer changes, and the watertight test would otherwise send every
+/// lane of a point-like triangle, all of whose edge functions are zero, to exact arithmetic.
+bool triangleCanBeHit(const std::array<Point3f, 3> &v);
+
 /// \brief Per-ray constants of both intersectors, computed once per query.
 struct TriangleRay {
     float o[3], d[3];
