@@ -123,7 +123,9 @@ static_assert(OctreeKept::kMaxGroups <= 8, "OctreeKeptSet holds eight groups");
 /// `termination`, the rays that stop in a nearer child before they reach a farther one, and
 /// with `lookahead`, the subtree a crowded child would get instead of its price as a leaf).
 /// `count` is the octree of issue 3 (x, y, z octants, leaf below leafSize); `seed` is the seed
-/// report's rule (each later sibling counts one level deeper). Every rule stops at maxDepth and
+/// report's rule (each later sibling counts one level deeper). `sah` skips the levels of a cell
+/// whose triangles all lie in one child (the cell shrinks to it without a node, and without
+/// using a level of maxDepth). Every rule stops at maxDepth (node levels) and
 /// at a budget of references per triangle for any input: 8 for `count` and `seed`, 1.5 for
 /// `sah` (past it, straddling triangles go down loose, uncopied). Memory: 256-byte inner
 /// nodes plus one word per node; leaves and kept lists live in the TriangleStore (40 bytes per

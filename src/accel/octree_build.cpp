@@ -695,10 +695,9 @@ struct Indices {
 /// child's box grown to hold it whole: a loose octree, Ulrich 2000), which never adds a
 /// reference.
 std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, const BoundingBox3f &box, Ref *ids,
-                                size_t n, int depthIn, double budget) {
+                                size_t n, int depth, double budget) {
     const bool sah = in.rule == Rule::Sah;
     BoundingBox3f cell = cellIn;
-    int depth = depthIn;
     OctreeNode::Pattern pattern{{0, 1, 2}};
     BoundingBox3f cells[8];
     // The node's scratch and its children's lists come from this thread's stack arena and go
@@ -808,17 +807,26 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         }
         return only;
     };
+    // Shrinking the cell to its only filled child skips a level of empty space. It costs no
+    // level of the traversal, and no level of maxDepth either: a small object under a ground
+    // 10^9 times its size would otherwise spend every level of maxDepth on the empty space above
+    // it and end as one leaf of all its triangles (a 50k-triangle torus 1e-3 across on a
+    // ground 2e6 wide: one leaf, 0.15x Embree's primary rays). The cells stay the octree's:
+    // each is a half of a half of ... its parent's child cell. A cell whose bisection no longer
+    // halves it in float (a few ulps wide) ends the shrinking, so the loop always ends.
+    auto shrinkTo = [&](int only) {
+        const BoundingBox3f &next = cells[only];
+        if (next.min == cell.min && next.max == cell.max) return false;
+        cell = next;
+        return true;
+    };
     for (;;) {
         pattern = patternFor(in.rule, cell, box, ids, n);
         for (int c = 0; c < 8; ++c) cells[c] = cellOf(cell, pattern, c);
         classifier.emplace(cell, pattern, cells, sah);
-        if (sah && depth + 1 < in.maxDepth) {
+        if (sah) {
             const int only = soleChild();
-            if (only >= 0) {
-                cell = cells[only];
-                ++depth;
-                continue;
-            }
+            if (only >= 0 && shrinkTo(only)) continue;
         }
         // Classification and gathering in one pass over the references (in blocks of 4096,
         // in parallel for large nodes; the blocks' sums are exact whatever their order).
@@ -893,19 +901,16 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             else gather();
         });
         // `sah`: every triangle in one and the same child: the split would separate nothing,
-        // so the cell shrinks to that child without a node (empty space costs no level of the
-        // traversal, only of maxDepth). (Every mask is non-empty, so a child that counts every
-        // reference while the counts add up to n holds them all alone.)
-        if (!sah || depth + 1 >= in.maxDepth) break;
+        // so the cell shrinks to that child without a node. (Every mask is non-empty, so a
+        // child that counts every reference while the counts add up to n holds them all alone.)
+        if (!sah) break;
         size_t total = 0;
         int only = -1;
         for (int c = 0; c < 8; ++c) {
             total += counts[c];
             if (counts[c] == n) only = c;
         }
-        if (only < 0 || total != n) break;
-        cell = cells[only];
-        ++depth;
+        if (only < 0 || total != n || !shrinkTo(only)) break;
     }
     const double boxArea = area(box);
     auto probability = [&](int c) { return boxArea > 0.0 ? area(boxes[c]) / boxArea : 1.0; };

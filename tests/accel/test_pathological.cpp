@@ -238,6 +238,44 @@ TEST(Pathological, EmptyScene) { checkPathology({"empty", {}, 0}); }
 TEST(Pathological, EmptyMesh) { checkPathology({"empty mesh", {MeshData()}, 0}); }
 TEST(Pathological, OneTriangle) { checkPathology({"one triangle", {oneTriangle()}, 8}); }
 
+// A 40k-triangle torus 1e-3 across on a ground 2e6 wide (a ratio of 2e9, beyond the reach of
+// maxDepth 24 in halvings): the levels of empty space above it must not use up the depth, or
+// the torus ends as one leaf of all its triangles. Its subtree must split it like any object,
+// and answer as brute force does on rays aimed at its vertices.
+TEST(Pathological, SpeckOnAContinentIsSubdividedLikeAnyObject) {
+    if (!octreeAvailable()) GTEST_SKIP() << "the octree accel is not in this build";
+    MeshData speck = torus(0.7f, 0.25f, 200, 100);
+    for (Point3f &p : speck.positions) p *= 1e-3f;
+    MeshData ground;
+    ground.positions = {Point3f(-1e6f, -0.3e-3f, -1e6f), Point3f(1e6f, -0.3e-3f, -1e6f), Point3f(1e6f, -0.3e-3f, 1e6f),
+                        Point3f(-1e6f, -0.3e-3f, 1e6f)};
+    ground.faces = {{0, 1, 2}, {0, 2, 3}};
+    Mesh a(speck, "speck"), b(ground, "continent");
+    std::vector<const Mesh *> meshes = {&a, &b};
+    std::unique_ptr<Accel> octree = makeAccel("octree", intersectorProps(""), meshes);
+    std::unique_ptr<Accel> brute = makeAccel("brute", intersectorProps(""), meshes);
+    ASSERT_TRUE(octree && brute);
+    const double perLeaf = stat(*octree, "avg_tris_per_leaf").value_or(1e9);
+    std::printf("[ speck    ] %.1f triangles per leaf, depth %.0f\n", perLeaf,
+                stat(*octree, "max_depth_reached").value_or(-1));
+    EXPECT_LE(perLeaf, 64.0);
+    pcg32 rng(23);
+    size_t hits = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const Point3f target = speck.positions[rng(uint32_t(speck.positions.size()))];
+        const Point3f origin(2e-3f * (uniform01(rng) - 0.5f), 1e-3f * uniform01(rng) + 0.5e-3f, 2e-3f * (uniform01(rng) - 0.5f));
+        const Ray3f ray(origin, target - origin);
+        Hit h1, h2;
+        const bool b1 = brute->intersect(ray, h1), b2 = octree->intersect(ray, h2);
+        ASSERT_EQ(b1, b2) << "o=" << origin.transpose() << " d=" << ray.d.transpose();
+        if (b1) {
+            ASSERT_EQ(h1.t, h2.t) << "o=" << origin.transpose() << " d=" << ray.d.transpose();
+        }
+        hits += b1;
+    }
+    EXPECT_GT(hits, 1500u);
+}
+
 // Degenerate triangles are valid input: the OBJ loader keeps them, queries stay sane, and a
 // triangle whose corners coincide is never hit (its edges are exactly zero). The octree leaves
 // out those whose corners lie exactly on one line (the points and the repeated indices of
