@@ -10,9 +10,16 @@ namespace nori {
 void Accel::addMesh(const Mesh *mesh) {
     uint64_t total = uint64_t(m_offsets.back()) + mesh->triangleCount();
     if (total >= uint64_t(UINT32_MAX)) throw NoriException("{}: too many triangles in the scene", mesh->location());
+    BoundingBox3f box = m_bbox;
+    box.expandBy(mesh->bbox());
+    // Cells, boxes and their areas are computed in float: a side beyond its range (corners past
+    // +-1.7e38) would make them infinite and their midpoints NaN.
+    if (box.isValid() && !box.extents().allFinite())
+        throw NoriException("{}: the scene spans more than the float range ({} to {}); scale it down",
+                            mesh->location(), box.min.minCoeff(), box.max.maxCoeff());
     m_meshes.push_back(mesh);
     m_offsets.push_back(uint32_t(total));
-    m_bbox.expandBy(mesh->bbox());
+    m_bbox = box;
 }
 
 void Accel::build() {

@@ -276,6 +276,30 @@ TEST(Pathological, SpeckOnAContinentIsSubdividedLikeAnyObject) {
     EXPECT_GT(hits, 1500u);
 }
 
+// Corners past +-1.7e38 make the scene's sides longer than the largest float: the octree's
+// cells and their midpoints would be infinite and NaN (it then missed every triangle but the
+// ground). Refused with a message naming the mesh, by every accelerator alike.
+TEST(Pathological, ASceneBeyondTheFloatRangeIsRefusedClearly) {
+    MeshData ground;
+    ground.positions = {Point3f(-3e38f, 0, -3e38f), Point3f(3e38f, 0, -3e38f), Point3f(3e38f, 0, 3e38f)};
+    ground.faces = {{0, 1, 2}};
+    Mesh mesh(ground, "continent.obj");
+    std::vector<const Mesh *> meshes = {&mesh};
+    for (const std::string type : {"brute", "octree"}) {
+        if (type == "octree" && !octreeAvailable()) continue;
+        try {
+            makeAccel(type, intersectorProps(""), meshes);
+            ADD_FAILURE() << type << " accepted a scene wider than the float range";
+        } catch (const NoriException &e) {
+            EXPECT_NE(std::string(e.what()).find("float range"), std::string::npos) << e.what();
+        }
+    }
+    // Up to 1e38 (sides of 2e38) the same scene is accepted.
+    for (Point3f &p : ground.positions) p /= 3.0f;
+    Mesh smaller(ground, "continent.obj");
+    EXPECT_TRUE(makeAccel("brute", intersectorProps(""), {&smaller}));
+}
+
 // Degenerate triangles are valid input: the OBJ loader keeps them, queries stay sane, and a
 // triangle whose corners coincide is never hit (its edges are exactly zero). The octree leaves
 // out those whose corners lie exactly on one line (the points and the repeated indices of
