@@ -62,10 +62,13 @@ Transform Transform::rotate(const Vector3f &axis, float angleDegrees) {
 
 Transform Transform::lookAt(const Point3f &origin, const Point3f &target, const Vector3f &up) {
     Vector3f dir = target - origin;
-    if (!origin.allFinite() || !target.allFinite() || !up.allFinite() || dir.norm() == 0.0f)
+    if (!origin.allFinite() || !target.allFinite() || !up.allFinite() || !dir.allFinite() || dir.isZero(0.0f))
         throw NoriException("lookat needs distinct, finite origin and target");
-    dir.normalize();
-    Vector3f left = up.normalized().cross(dir);
+    // stableNormalize: |dir|^2 would underflow for a scene 1e-30 across and overflow for one
+    // 1e37 across, though their directions are well defined.
+    dir.stableNormalize();
+    if (up.isZero(0.0f)) throw NoriException("lookat 'up' vector is zero");
+    Vector3f left = up.stableNormalized().cross(dir);
     if (!(left.norm() > 1e-6f)) throw NoriException("lookat 'up' vector is parallel to the view direction");
     left.normalize();
     Vector3f newUp = dir.cross(left);
