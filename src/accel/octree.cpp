@@ -49,8 +49,8 @@ const char *traversalName(OctreeAccel::Traversal t) {
 OctreeAccel::OctreeAccel(const PropertyList &props) {
     m_buildRule = parseBuildRule(props);
     // `sah`: the cost model decides where to stop; maxDepth only bounds the tree's node levels
-    // (levels of empty space above a small object on a huge ground make no node and do not count), and leafSize 17 spares the cost
-    // model the nodes of one chunk: such a leaf costs one chunk test (Cost::kChunk), and its
+    // (levels of empty space above a small object on a huge ground make no node and do not
+    // count), and leafSize 17 spares the cost model the nodes of one chunk: such a leaf costs one chunk test (Cost::kChunk), and its
     // split pays only where the children's boxes add up to less than half the node's box
     // (kNode + kChunk * sum P(c) < kChunk). With leafSize 8 the 120k city classified 7,020
     // nodes of 8-16 triangles (68k references) to split 702 of them: 7 % of its build, with

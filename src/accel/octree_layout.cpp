@@ -95,8 +95,9 @@ void OctreeAccel::buildImpl() {
     const uint32_t total = triangleCount();
 
     // Gather corners and bounds of every triangle; triangles that no ray can hit (a corner
-    // not finite, or all three on one line: triangleCanBeHit) are left out. (The corners are appended: no pass that
-    // zeroes them first; the references are plain data, not initialised either.)
+    // not finite, or all three on one line: triangleCanBeHit) are left out. (The corners are
+    // appended: no pass that zeroes them first; the references are plain data, not
+    // initialised either.)
     // (The large arrays on huge pages: see allocateLarge().)
     std::vector<std::array<Point3f, 3>, HugePageAllocator<std::array<Point3f, 3>>> vertices;
     vertices.reserve(total);
