@@ -3,6 +3,7 @@
 #include <nori/transform.h>
 #include <Eigen/LU>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace nori {
@@ -64,11 +65,17 @@ Transform Transform::lookAt(const Point3f &origin, const Point3f &target, const 
     Vector3f dir = target - origin;
     if (!origin.allFinite() || !target.allFinite() || !up.allFinite() || !dir.allFinite() || dir.isZero(0.0f))
         throw NoriException("lookat needs distinct, finite origin and target");
-    // stableNormalize: |dir|^2 would underflow for a scene 1e-30 across and overflow for one
-    // 1e37 across, though their directions are well defined.
-    dir.stableNormalize();
+    // |dir|^2 underflows for a scene 1e-30 across and overflows for one 1e37 across, though
+    // their directions are well defined: there, Eigen's stableNormalized (which scales first);
+    // elsewhere the plain division, so that every camera ray keeps its bits.
+    auto unit = [](const Vector3f &v) {
+        const float n2 = v.squaredNorm();
+        return n2 >= std::numeric_limits<float>::min() && n2 <= std::numeric_limits<float>::max() ? v.normalized()
+                                                                                                    : v.stableNormalized();
+    };
+    dir = unit(dir);
     if (up.isZero(0.0f)) throw NoriException("lookat 'up' vector is zero");
-    Vector3f left = up.stableNormalized().cross(dir);
+    Vector3f left = unit(up).cross(dir);
     if (!(left.norm() > 1e-6f)) throw NoriException("lookat 'up' vector is parallel to the view direction");
     left.normalize();
     Vector3f newUp = dir.cross(left);
