@@ -588,7 +588,10 @@ template <int L, bool kAnyHit = false>
     VMask<L> exactly{};
     if (any(unsure)) {
         const Edges<L> e = exactEdges(unsure, r, rows, n, i, Edges<L>{U, V, W});
-        const VMask<L> floatHit = ~mixedSigns(U, V, W), exactHit = ~mixedSigns(e.U, e.V, e.W);
+        // (All three exact volumes zero: the ray lies in the triangle's plane, a miss by the
+        // exact rule, whatever signs the float rounding noise had.)
+        const VMask<L> floatHit = ~mixedSigns(U, V, W),
+                       exactHit = ~mixedSigns(e.U, e.V, e.W) & ((e.U != 0.0f) | (e.V != 0.0f) | (e.W != 0.0f));
         exactly = unsure & ((floatHit & ~exactHit) | (exactHit & ~floatHit));
         U = select(exactly, e.U, U), V = select(exactly, e.V, V), W = select(exactly, e.W, W);
         valid = m & ~mixedSigns(U, V, W);

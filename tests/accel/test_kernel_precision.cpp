@@ -215,6 +215,59 @@ TEST(KernelPrecision, OverflowingEdgeFunctionIsNoSureHit) {
     }
 }
 
+// A ray that lies in the plane of a triangle: its three exact edge volumes are zero, which the
+// exact rule counts as a miss. The float edge functions of such a ray are rounding noise, and
+// where their signs agreed they were kept, so the lane reported a hit on the sliver it grazes
+// (a shadow ray of the generated hair scene moved to 1e5, in the triangle's vertical plane).
+// Here: that ray, and rays in the planes of random triangles whose corners lie on the coarse
+// grid of coordinates near 1e5 (origin and direction exact combinations of the edges), at
+// every width, for closest-hit and any-hit queries.
+TEST(KernelPrecision, RayInATrianglesPlaneMissesIt) {
+    struct Case {
+        std::array<Point3f, 3> tri;
+        Ray3f ray;
+    };
+    std::vector<Case> cases;
+    cases.push_back({{Point3f(0x1.86a076p+16f, 0x1.143854p+0f, -0x1.869fa8p+17f),
+                      Point3f(0x1.86a076p+16f, 0x1.12e024p+0f, -0x1.869fa8p+17f),
+                      Point3f(0x1.86a08cp+16f, 0x1.110d24p+0f, -0x1.869f9cp+17f)},
+                     Ray3f(Point3f(0x1.86a076p+16f, 0x1.a65ac4p-1f, -0x1.869fa8p+17f),
+                           Vector3f(0x1.34p-1f, 0x1.54575cp+2f, 0x1.5p-1f), 0.0f, 1.0f)});
+    pcg32 rng(41);
+    // Multiples of 2^-6, the ulp of floats near 2e5: every sum below is exact.
+    auto grid = [&](float centre) { return centre + float(int(rng(256)) - 128) * 0x1p-6f; };
+    for (int i = 0; i < 4000; ++i) {
+        const Point3f p0(grid(1e5f), grid(1.0f), grid(-2e5f));
+        auto step = [&] { return float(int(rng(9)) - 4) * 0x1p-6f; };
+        const Vector3f e1(step(), step(), step()), e2(step(), step(), step());
+        if (e1.cross(e2).isZero()) continue;
+        // Origin: p0 moved along the edges by whole multiples (exact on the grid); direction:
+        // a small integer combination of the edges (exact).
+        const Point3f o = p0 + float(int(rng(7)) - 3) * e1 + float(int(rng(7)) - 3) * e2;
+        const Vector3f d = float(int(rng(5)) - 2) * e1 + float(int(rng(5)) - 2) * e2;
+        if (d.isZero()) continue;
+        EXPECT_EQ(double(d.x()) * (double(e1.y()) * e2.z() - double(e1.z()) * e2.y()) +
+                      double(d.y()) * (double(e1.z()) * e2.x() - double(e1.x()) * e2.z()) +
+                      double(d.z()) * (double(e1.x()) * e2.y() - double(e1.y()) * e2.x()),
+                  0.0);  // (exact: a few bits each)
+        cases.push_back({{p0, p0 + e1, p0 + e2}, Ray3f(o, d, 0.0f, 1e4f)});
+    }
+    size_t checked = 0;
+    for (const Case &c : cases) {
+        const TriangleStore store = leafOf(Intersector::Watertight, {c.tri});
+        const TriangleRay tr(c.ray);
+        for (int width : TriangleStore::laneWidths()) {
+            Hit hit;
+            ASSERT_FALSE(store.intersectLanes(width, tr, 0, 1, hit))
+                << "width " << width << ": t " << hit.t << " u " << hit.u << " v " << hit.v << ", o=" << c.ray.o.transpose()
+                << " d=" << c.ray.d.transpose() << " p0=" << c.tri[0].transpose() << " p1=" << c.tri[1].transpose() << " p2=" << c.tri[2].transpose();
+            ASSERT_FALSE(store.occludedLanes(width, tr, 0, 1, c.ray.maxt)) << "width " << width;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 3000u);
+}
+
 // The shapes behind the faults, at random: one leaf of huge quads (axis-aligned and tilted),
 // slivers (1:100 to 1:10^4) and ordinary triangles, hit by rays from origins near the world
 // origin aimed at random points of them, and by rays leaving the ground from just above it. Every hit a kernel reports,
