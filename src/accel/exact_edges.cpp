@@ -77,6 +77,24 @@ bool exactEdgeVolumes(const float o[3], const float d[3], const float p[3][3], d
     return true;
 }
 
+namespace {
+/// The exact test of exactlyCollinear where the double evaluation leaves it open (out of line:
+/// its integers' stack frame would otherwise be set up on every call).
+[[gnu::noinline]] bool collinearInIntegers(const float p[3][3]) {
+    Int sa[3], sb[3];
+    for (int k = 0; k < 3; ++k) {
+        const Int p0 = scaled(p[0][k]);
+        sa[k] = scaled(p[1][k]) - p0;
+        sb[k] = scaled(p[2][k]) - p0;
+    }
+    for (int e = 0; e < 3; ++e) {
+        const int i = (e + 1) % 3, j = (e + 2) % 3;
+        if (sa[i] * sb[j] != sa[j] * sb[i]) return false;
+    }
+    return true;
+}
+} // namespace
+
 bool exactlyCollinear(const float p[3][3]) {
     // Two corners that coincide (a point or a segment: common where float rounding has merged
     // the corners of small triangles far from the origin).
@@ -95,18 +113,8 @@ bool exactlyCollinear(const float p[3][3]) {
         const double x = a[i] * b[j], y = a[j] * b[i];
         if (std::abs(x - y) > 0x1p-49 * (std::abs(x) + std::abs(y))) return false;
     }
-    // Within rounding of zero on every axis (rare: slivers and points): exact integers.
-    Int sa[3], sb[3];
-    for (int k = 0; k < 3; ++k) {
-        const Int p0 = scaled(p[0][k]);
-        sa[k] = scaled(p[1][k]) - p0;
-        sb[k] = scaled(p[2][k]) - p0;
-    }
-    for (int e = 0; e < 3; ++e) {
-        const int i = (e + 1) % 3, j = (e + 2) % 3;
-        if (sa[i] * sb[j] != sa[j] * sb[i]) return false;
-    }
-    return true;
+    // Within rounding of zero on every axis (rare: slivers): exact integers.
+    return collinearInIntegers(p);
 }
 
 } // namespace nori

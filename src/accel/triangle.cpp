@@ -43,6 +43,18 @@ const char *intersectorName(Intersector kind) { return kind == Intersector::MT ?
 
 bool triangleCanBeHit(const std::array<Point3f, 3> &v) {
     if (!(v[0].allFinite() && v[1].allFinite() && v[2].allFinite())) return false;
+    // Most triangles are settled by their float normal: a difference of floats is within a
+    // relative 2^-24 of the exact one, so each component of the cross product is within 4 units
+    // of 2^-24 of its two products' magnitudes; one beyond 2^-20 of them (and clear of the
+    // subnormal range, where products lose their relative precision) is nonzero.
+    const Vector3f a = v[1] - v[0], b = v[2] - v[0];
+    bool nonzero = false;
+    for (int e = 0; e < 3; ++e) {
+        const int i = (e + 1) % 3, j = (e + 2) % 3;
+        const float x = a[i] * b[j], y = a[j] * b[i];
+        nonzero |= std::abs(x - y) > 0x1p-20f * (std::abs(x) + std::abs(y)) + 0x1p-100f;
+    }
+    if (nonzero) return true;
     const float p[3][3] = {{v[0].x(), v[0].y(), v[0].z()}, {v[1].x(), v[1].y(), v[1].z()}, {v[2].x(), v[2].y(), v[2].z()}};
     return !exactlyCollinear(p);
 }
