@@ -26,7 +26,10 @@ def load(paths):
     rows = []
     for path in paths:
         with open(path) as f:
-            data = json.load(f)
+            try:
+                data = json.load(f)
+            except ValueError as e:
+                raise ValueError("%s: not nori-bench JSON (%s)" % (path, e)) from None
         rows.extend(data if isinstance(data, list) else [data])
     return rows
 
@@ -113,13 +116,21 @@ def main(argv):
         i = argv.index("--names")
         names = argv[i + 1].split(",")
         argv = argv[:i] + argv[i + 2:]
-    if not argv:
-        print(__doc__, file=sys.stderr)
+    if not argv or "-h" in argv or "--help" in argv:
+        print(__doc__, file=sys.stderr if not argv else sys.stdout)
+        return 2 if not argv else 0
+    unknown = [a for a in argv if a.startswith("-") and a not in ("--floors", "--median")]
+    if unknown:
+        print("summary.py: unknown option %s (see --help)" % unknown[0], file=sys.stderr)
         return 2
     floors = "--floors" in argv
     median = "--median" in argv
     argv = [a for a in argv if a not in ("--floors", "--median")]
-    results = load(argv)
+    try:
+        results = load(argv)
+    except (OSError, ValueError) as e:
+        print("summary.py: %s" % e, file=sys.stderr)
+        return 1
     if median:
         groups = {}
         for r in results:

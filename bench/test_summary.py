@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Checks bench/summary.py --median on synthetic results: three runs of one input whose primary
 ratios are 0.5, 0.9 and 0.7 make one row at the median 0.70x (which meets the 0.7 floor, where the
-first run alone would not), and without --median three rows."""
+first run alone would not), and without --median three rows; and that bad input (malformed
+JSON, a missing file, an unknown option) gets one line and a non-zero status, not a traceback."""
 import json
 import os
 import subprocess
@@ -43,6 +44,18 @@ def main():
             errors.append("without --median: expected one row per run")
         if "primary 2," not in plain:
             errors.append("without --median: expected 2 of 3 rows at or above the primary floor")
+        # Bad input: one line naming the problem and a non-zero status, no traceback.
+        bad = os.path.join(tmp, "bad.json")
+        with open(bad, "w") as f:
+            f.write("{")
+        for args, status, needle in (([bad], 1, bad + ": not nori-bench JSON"),
+                                     ([os.path.join(tmp, "missing.json")], 1, "missing.json"),
+                                     ([paths[0], "--flors"], 2, "unknown option --flors")):
+            p = subprocess.run([sys.executable, summary, *args], capture_output=True, text=True)
+            if p.returncode != status or needle not in p.stderr or "Traceback" in p.stderr:
+                errors.append("%s: status %d, stderr %r" % (args, p.returncode, p.stderr))
+        if subprocess.run([sys.executable, summary, "--help"], capture_output=True, text=True).stdout.find("usage:") < 0:
+            errors.append("--help: no usage on stdout")
     for e in errors:
         print("FAIL:", e)
     return 1 if errors else 0
