@@ -17,7 +17,16 @@ int main(int argc, char **argv) {
     std::vector<float> rotate, offset;
     app.add_option("shape", shape, "shape to generate, or 'all' (see --list)");
     app.add_option("out_dir", outDir, "folder for SHAPE.obj and SHAPE.xml (created if missing)");
-    app.add_option("--triangles", triangles, "approximate triangle count (default: the shape's own)");
+    // (Checked as text: CLI11 reads "-5" into an unsigned as 2^64 - 5.)
+    app.add_option("--triangles", triangles, "approximate triangle count (default: the shape's own)")
+        ->check(CLI::Validator(
+            [](const std::string &text) {
+                const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+                return digits && text.find_first_not_of('0') != std::string::npos
+                           ? std::string()
+                           : "expected a positive integer, got '" + text + "'";
+            },
+            ""));
     app.add_option("--seed", seed, "random seed (default 1)");
     app.add_option("--integrator", integrator, "integrator of the written scene (default: the shape's own)")
         ->check(CLI::IsMember({"ao", "normals"}));

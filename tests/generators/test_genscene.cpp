@@ -96,6 +96,8 @@ TEST(Genscene, BadArgumentsGiveOneLineAndNoFiles) {
         {"castle " + out, "unknown shape 'castle'", 2},
         {"room " + out + " --triangles 10", "needs between", 1},
         {"city " + out + " --triangles abc", "--triangles", 2},
+        {"city " + out + " --triangles -5", "--triangles", 2},
+        {"city " + out + " --triangles 0", "--triangles", 2},
         {"city " + out + " --integrator path", "--integrator", 2},
         {"city", "give SHAPE and OUT_DIR", 2},
         {"city " + out + " --rotate 1,2", "--rotate", 2},
