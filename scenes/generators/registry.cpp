@@ -24,6 +24,7 @@ const std::vector<ShapeInfo> &shapes() {
         {"clutter", "stones from 2 cm to 40 m on a mountainside", 120000, 2000, &generateClutter},
         {"hair", "head with thousands of long thin strands falling over it", 120000, 2000, &generateHair},
         {"sparse", "asteroid field: rocks far apart, cut by a tilted ring of huge triangles", 120000, 2000, &generateSparse},
+        {"park", "crossed-card trees on a lawn under a sky dome with polar fans, camera inside", 120000, 2000, &generatePark},
     };
     return table;
 }

@@ -23,5 +23,6 @@ GeneratedScene generateTowers(const GenParams &params);
 GeneratedScene generateClutter(const GenParams &params);
 GeneratedScene generateHair(const GenParams &params);
 GeneratedScene generateSparse(const GenParams &params);
+GeneratedScene generatePark(const GenParams &params);
 
 } // namespace nori::gen

@@ -128,12 +128,13 @@ TEST_P(EveryShape, PlacementMovesMeshAndCameraTogether) {
 
 INSTANTIATE_TEST_SUITE_P(Shapes, EveryShape, testing::Values("city", "grass", "heightfield", "sphere", "room", "wide",
                                                              "tabletop", "stadium", "coplanar", "forest", "office",
-                                                             "towers", "clutter", "hair", "sparse"));
+                                                             "towers", "clutter", "hair", "sparse", "park"));
 
 TEST(Generators, EveryRegisteredShapeIsTested) {
     std::vector<std::string> tested = {"city",     "grass",  "heightfield", "sphere",  "room",
                                        "wide",     "tabletop", "stadium",   "coplanar", "forest",
-                                       "office",   "towers",   "clutter",   "hair",     "sparse"};
+                                       "office",   "towers",   "clutter",   "hair",     "sparse",
+                                       "park"};
     std::vector<std::string> registered;
     for (const ShapeInfo &s : shapes()) registered.push_back(s.name);
     EXPECT_EQ(registered, tested);

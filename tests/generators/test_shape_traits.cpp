@@ -1,6 +1,6 @@
 /// \file test_shape_traits.cpp
 /// \brief The shapes added for scenes nobody tuned on (forest, office, towers, clutter, hair,
-/// sparse) have the property each one is there for: the tests measure it on the mesh.
+/// sparse, park) have the property each one is there for: the tests measure it on the mesh.
 #include <gtest/gtest.h>
 #include <nori/accel.h>
 #include <nori/bbox.h>
@@ -113,6 +113,46 @@ TEST(ShapeTraits, SparseIsMostlyEmpty) {
     EXPECT_EQ(tilted, 8u);
     // The triangles' boxes (overlaps counted twice) fill less than a millionth of the bounds.
     EXPECT_LT(occupied / (double(b.extents().x()) * b.extents().y() * b.extents().z()), 1e-6);
+}
+
+TEST(ShapeTraits, ParkIsACardForestInsideASkyWithFans) {
+    GeneratedScene s = generateScene("park", GenParams{20000, 1});
+    // Closed around the camera: a ray in any direction ends somewhere (1024 directions spread
+    // over the sphere, a Fibonacci lattice: the nearest to straight up lies 2.5 degrees off it,
+    // inside the polar fan).
+    Mesh mesh(s.mesh, "park");
+    std::unique_ptr<Accel> brute = bruteForce(mesh);
+    int escaped = 0;
+    for (int k = 0; k < 1024; ++k) {
+        const float z = 1.0f - (2.0f * float(k) + 1.0f) / 1024.0f, r = std::sqrt(1.0f - z * z);
+        const float phi = 2.399963f * float(k);  // the golden angle
+        Hit hit;
+        escaped += brute->intersect(Ray3f(s.camera.origin, Vector3f(r * std::cos(phi), z, r * std::sin(phi))), hit) ? 0 : 1;
+    }
+    EXPECT_EQ(escaped, 0);
+    // Poles: a vertex that dozens of slivers share.
+    std::vector<int> valence(s.mesh.positions.size(), 0);
+    for (const auto &f : s.mesh.faces)
+        for (uint32_t v : f) ++valence[v];
+    EXPECT_GE(*std::max_element(valence.begin(), valence.end()), 32);
+    // Most triangles are halves of vertical cards metres tall, and each tree's two cards cross:
+    // the midpoints of a card's two bottom corners coincide with its partner's.
+    size_t cards = 0;
+    for (size_t f = 0; f < s.mesh.faces.size(); ++f) {
+        const Vector3f e = triangleBounds(s.mesh, f).extents();
+        cards += (e.y() >= 2.0f && e.y() <= 8.0f && triangleBounds(s.mesh, f).min.y() == 0.0f) ? 1 : 0;
+    }
+    EXPECT_GT(double(cards), 0.75 * double(s.mesh.faces.size()));
+    size_t crossed = 0, checked = 0;
+    for (size_t f = s.mesh.faces.size() - 400; f + 3 < s.mesh.faces.size(); f += 4) {  // tree by tree, at the end
+        auto bottomMid = [&](size_t face) {  // quad (a, b, c, d) is faces (a, b, c), (a, c, d): a and b on the ground
+            const auto &t = s.mesh.faces[face];
+            return 0.5f * (s.mesh.positions[t[0]] + s.mesh.positions[t[1]]);
+        };
+        ++checked;
+        crossed += (bottomMid(f) - bottomMid(f + 2)).norm() < 1e-4f ? 1 : 0;
+    }
+    EXPECT_EQ(crossed, checked);
 }
 
 } // namespace
