@@ -8,6 +8,7 @@
 #include "shape_generators.h"
 #include "gen_random.h"
 #include "mesh_builder.h"
+#include <algorithm>
 #include <cmath>
 
 namespace nori::gen {
@@ -36,7 +37,7 @@ GeneratedScene generatePark(const GenParams &params) {
         }
     // The lawn.
     b.quad(Point3f(-Lawn, 0, -Lawn), Point3f(-Lawn, 0, Lawn), Point3f(Lawn, 0, Lawn), Point3f(Lawn, 0, -Lawn));
-    // The trees: two cards each, crossed at right angles through the trunk's axis.
+    // The trees: two cards each, crossed at right angles along their common vertical axis.
     GenRandom rng(params.seed, 23);
     const uint64_t used = b.triangleCount();
     const uint64_t trees = params.triangles > used + 4 ? (params.triangles - used) / 4 : 1;
