@@ -88,7 +88,7 @@ int main(int argc, char **argv) {
     if (std::optional<int> status = cli.parse(argc, argv)) return *status;
     try {
         for (const std::string &dir : searchPath) fileResolver().append(dir);
-        // (No accel is needed: brute force builds nothing.)
+        // (No accel is needed here: brute force builds next to nothing.)
         SceneOverrides overrides;
         overrides.accelType = "brute";
         std::unique_ptr<Scene> scene = loadScene(scenePath, overrides);
