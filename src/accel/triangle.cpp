@@ -744,15 +744,29 @@ unsigned blockEntries(const TriangleRay &r, const float *rows, uint32_t n, uint3
     using F = VFloat<L>;
     const uint32_t nb = TriangleStore::blockCount(n);
     const float *boxes = rows + size_t(10) * n;
+    // The ray's rows and constants in locals, once: read through \p r in the loop, they were
+    // read again (and the row addresses multiplied out again) after every store to \p tn,
+    // which might alias them: 89 instructions per block of L boxes instead of about 45.
+    const float *nearRow[3], *farRow[3];
+    F o[3], rcpNear[3], rcpFar[3];
+    for (int a = 0; a < 3; ++a) {
+        const float *lower = boxes + size_t(a) * nb, *upper = lower + size_t(3) * nb;
+        nearRow[a] = r.neg[a] ? upper : lower;
+        farRow[a] = r.neg[a] ? lower : upper;
+        o[a] = F(r.o[a]);
+        rcpNear[a] = F(r.rcpNear[a]);
+        rcpFar[a] = F(r.rcpFar[a]);
+    }
+    const F mint(r.mint), limit(maxt);
     unsigned mask = 0;
     for (uint32_t k = 16 * g; k < std::min(nb, 16 * g + 16); k += L) {
         const VMask<L> m = VMask<L>::firstN(nb - k);
-        F t0 = r.mint, t1 = maxt;
+        F t0 = mint, t1 = limit;
         for (int a = 0; a < 3; ++a) {
-            F nearPlane = F::load(boxes + size_t(3 * r.neg[a] + a) * nb + k, m);
-            F farPlane = F::load(boxes + size_t(3 * (1 - r.neg[a]) + a) * nb + k, m);
-            t0 = max((nearPlane - r.o[a]) * r.rcpNear[a], t0);
-            t1 = min((farPlane - r.o[a]) * r.rcpFar[a], t1);
+            F nearPlane = F::load(nearRow[a] + k, m);
+            F farPlane = F::load(farRow[a] + k, m);
+            t0 = max((nearPlane - o[a]) * rcpNear[a], t0);
+            t1 = min((farPlane - o[a]) * rcpFar[a], t1);
         }
         t0.storeu(tn + (k - 16 * g));
         mask |= bits(m & (t0 <= t1)) << (k - 16 * g);
