@@ -740,9 +740,9 @@ template <int L>
 /// 16g + j); bit j of the result is set when that block is entered within [ray.mint, maxt].
 /// The conservative slab test of the octree nodes; a NaN never narrows the interval.
 template <int L>
-unsigned blockEntries(const TriangleRay &r, const float *rows, uint32_t n, uint32_t g, float maxt, float tn[16]) {
+[[gnu::always_inline]] inline unsigned blockEntries(const TriangleRay &r, const float *rows, uint32_t n, uint32_t nb,
+                                                    uint32_t g, float maxt, float tn[16]) {
     using F = VFloat<L>;
-    const uint32_t nb = TriangleStore::blockCount(n);
     const float *boxes = rows + size_t(10) * n;
     // The ray's rows and constants in locals, once: read through \p r in the loop, they were
     // read again (and the row addresses multiplied out again) after every store to \p tn,
@@ -802,7 +802,7 @@ bool leafIntersect(Intersector kind, const TriangleRay &ray, const float *rows, 
     const uint32_t nb = TriangleStore::blockCount(n);
     for (uint32_t g = 0; 16 * g < nb; ++g) {
         float tn[16];
-        unsigned mask = blockEntries<L>(ray, rows, n, g, ray.cullLimit(best.t), tn);
+        unsigned mask = blockEntries<L>(ray, rows, n, nb, g, ray.cullLimit(best.t), tn);
         while (mask) {
             // The nearest block left (the running minimum kept in a register, not reloaded).
             int k = __builtin_ctz(mask);
@@ -849,7 +849,7 @@ bool leafOccluded(Intersector kind, const TriangleRay &ray, const float *rows, u
     const uint32_t nb = TriangleStore::blockCount(n);
     for (uint32_t g = 0; 16 * g < nb; ++g) {
         float tn[16];
-        unsigned mask = blockEntries<L>(ray, rows, n, g, maxt, tn);
+        unsigned mask = blockEntries<L>(ray, rows, n, nb, g, maxt, tn);
         while (mask) {
             const int k = __builtin_ctz(mask);
             uint32_t first, end;
