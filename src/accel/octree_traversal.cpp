@@ -426,6 +426,7 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
     LazyTriangleRay tri(ray);
     Hit best;
     best.t = ray.maxt;
+    const float mint = ray.mint;  // (read through ray, it was read again on every visit)
 
     // Structure-of-arrays stack, with room for a full-width store past the top.
     alignas(64) uint32_t stackChild[kStackSize + kStackSlack], stackCount[kStackSize + kStackSlack];
@@ -446,9 +447,9 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
             WideRay::F wideEntry;
             int nearLane = 0;
             const bool wide = count & OctreeNode::kWide;
-            int pushed = wide ? wide_.push(m_wide[child], ray.mint, limit, stackChild + sp, stackCount + sp, stackT + sp,
+            int pushed = wide ? wide_.push(m_wide[child], mint, limit, stackChild + sp, stackCount + sp, stackT + sp,
                                            nearChild, nearCount, wideEntry, nearLane)
-                              : simd.push(m_nodes[child], patternOf(count), ray.mint, limit, stackChild + sp,
+                              : simd.push(m_nodes[child], patternOf(count), mint, limit, stackChild + sp,
                                           stackCount + sp, stackT + sp, nearChild, nearCount, entry, nearLane);
 #ifdef NORI_OCTREE_COUNTERS
             if (g_octreeCounters.nodeVisits) ++(*g_octreeCounters.nodeVisits)[nodeIndexOf(child, count)];
@@ -487,10 +488,10 @@ bool OctreeAccel::intersectSimd(const Ray3f &ray, Hit &hit) const {
                 const OctreeKept &group = m_kept[nodeIndexOf(child, count)];
                 float tk;
                 if (group.set == OctreeKept::kNoSet) {  // one group
-                    if (slab.hit(group, ray.mint, limit, tk)) visitGroup(group.offset, group.count, tk);
+                    if (slab.hit(group, mint, limit, tk)) visitGroup(group.offset, group.count, tk);
                 } else {  // several groups: one box test for all, nearest first
                     KeptEntries e;
-                    const int n = enteredGroups(m_keptSets[group.set], simd, ray.mint, limit, e);
+                    const int n = enteredGroups(m_keptSets[group.set], simd, mint, limit, e);
                     for (int k = 0; k < n; ++k)
                         if (e.tnear[k] <= limit) visitGroup(e.offset[k], e.count[k], e.tnear[k]);
                 }
