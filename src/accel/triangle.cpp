@@ -693,13 +693,12 @@ inline bool narrowSpan(uint32_t first, uint32_t end) {
 
 /// Closest hit over triangles [first, end) of a leaf (at most 16) in steps of L lanes: the
 /// lexicographic minimum of (t, prim), so ties resolve the same way at every width.
-template <int L>
-bool spanSteps(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end,
-               Hit &best) {
+template <int L, Intersector kKind>
+bool spanSteps(const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end, Hit &best) {
     bool found = false;
     NORI_TRIANGLE_COUNT(chunks, 1);
     for (uint32_t i = first; i < end; i += L) {
-        Step<L> s = testStep<L>(kind, ray, rows, n, i, end, best.t, best.prim);
+        Step<L> s = testStep<L>(kKind, ray, rows, n, i, end, best.t, best.prim);
         if (!any(s.hit)) continue;
         const unsigned hits = bits(s.hit);
         float tmin;
@@ -731,9 +730,12 @@ bool spanSteps(Intersector kind, const TriangleRay &ray, const float *rows, uint
 template <int L>
 [[gnu::always_inline]] inline bool spanIntersect(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n,
                                                  uint32_t first, uint32_t end, Hit &best) {
+    // (The kernel chosen here, once per span, not in every step.)
+    constexpr Intersector mt = Intersector::MT, wt = Intersector::Watertight;
     if constexpr (L > 8)
-        if (narrowSpan<L>(first, end)) return spanSteps<8>(kind, ray, rows, n, first, end, best);
-    return spanSteps<L>(kind, ray, rows, n, first, end, best);
+        if (narrowSpan<L>(first, end))
+            return kind == mt ? spanSteps<8, mt>(ray, rows, n, first, end, best) : spanSteps<8, wt>(ray, rows, n, first, end, best);
+    return kind == mt ? spanSteps<L, mt>(ray, rows, n, first, end, best) : spanSteps<L, wt>(ray, rows, n, first, end, best);
 }
 
 /// Entry distances of the ray into block boxes 16g .. 16g + 15 of a leaf (tn[j] for block
@@ -824,12 +826,11 @@ bool leafIntersect(Intersector kind, const TriangleRay &ray, const float *rows, 
 
 /// Any hit among triangles [first, end) (at most 16) with t in [ray.mint, maxt], in steps of L
 /// lanes.
-template <int L>
-bool occludedSteps(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end,
-                   float maxt) {
+template <int L, Intersector kKind>
+bool occludedSteps(const TriangleRay &ray, const float *rows, uint32_t n, uint32_t first, uint32_t end, float maxt) {
     NORI_TRIANGLE_COUNT(chunks, 1);
     for (uint32_t i = first; i < end; i += L)
-        if (any(testStep<L, true>(kind, ray, rows, n, i, end, maxt).hit)) return true;
+        if (any(testStep<L, true>(kKind, ray, rows, n, i, end, maxt).hit)) return true;
     return false;
 }
 
@@ -837,9 +838,11 @@ bool occludedSteps(Intersector kind, const TriangleRay &ray, const float *rows, 
 template <int L>
 [[gnu::always_inline]] inline bool spanOccluded(Intersector kind, const TriangleRay &ray, const float *rows, uint32_t n,
                                                 uint32_t first, uint32_t end, float maxt) {
+    constexpr Intersector mt = Intersector::MT, wt = Intersector::Watertight;
     if constexpr (L > 8)
-        if (narrowSpan<L>(first, end)) return occludedSteps<8>(kind, ray, rows, n, first, end, maxt);
-    return occludedSteps<L>(kind, ray, rows, n, first, end, maxt);
+        if (narrowSpan<L>(first, end))
+            return kind == mt ? occludedSteps<8, mt>(ray, rows, n, first, end, maxt) : occludedSteps<8, wt>(ray, rows, n, first, end, maxt);
+    return kind == mt ? occludedSteps<L, mt>(ray, rows, n, first, end, maxt) : occludedSteps<L, wt>(ray, rows, n, first, end, maxt);
 }
 
 /// Any hit in the leaf with t in [ray.mint, maxt].
