@@ -22,7 +22,7 @@
 ///     is f with lane j set to x (in registers: scalar stores then a vector load of the same
 ///     bytes would stall on store forwarding);
 ///   - masks: m & n, m | n, ~m (within the L lanes), any(m), bits(m) (bit j = lane j),
-///     M::firstN(n) (lanes 0 .. n-1; all when n >= L);
+///     M::firstN(n) (lanes 0 .. n-1; all when n >= L; n < 2^31);
 ///   - U: U(x), U::loadu(p), u.storeu(p), u ^ v, lane(u, j); permute(f or u, idx) (lane j gets
 ///     lane idx[j]); lookup8(table, idx) (L = 1, 8: lane j gets table[idx[j]] from an 8-entry
 ///     float or uint32 table, idx[j] < 8); lookup16 the same from a 16-entry table (L = 1, 8, 16);
@@ -145,7 +145,8 @@ template <> struct VMask<8> {
 template <> struct VMask<8> {
     __m256 k;  ///< all ones in the set lanes
     static VMask firstN(uint32_t n) {
-        __m256i below = _mm256_cmpgt_epi32(_mm256_set1_epi32(int(n >= 8 ? 8 : n)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+        // (No clamp to 8: a signed compare holds for any n below 2^31, more than any list has.)
+        __m256i below = _mm256_cmpgt_epi32(_mm256_set1_epi32(int(n)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
         return {_mm256_castsi256_ps(below)};
     }
     friend VMask operator&(VMask x, VMask y) { return {_mm256_and_ps(x.k, y.k)}; }

@@ -162,3 +162,26 @@ TEST(Lanes, WithLaneSetsOneLaneEightLanes) { checkWithLane<8>(); }
 #if NORI_LANES_AVX512
 TEST(Lanes, WithLaneSetsOneLaneSixteenLanes) { checkWithLane<16>(); }
 #endif
+
+namespace {
+/// firstN(n) sets lanes 0 .. n - 1, all of them from n = L on, up to the largest count its
+/// contract allows (2^31 - 1), at L lanes.
+template <int L>
+void checkFirstN() {
+    const uint32_t all = (1u << L) - 1u;
+    for (uint32_t n : {0u, 1u, 2u, 3u, 5u, 7u, 8u, 9u, 15u, 16u, 17u, 100u, 65536u, 0x7fffffffu}) {
+        const unsigned want = n >= uint32_t(L) ? all : (1u << n) - 1u;
+        EXPECT_EQ(bits(lanes::VMask<L>::firstN(n)), want) << "L=" << L << " n=" << n;
+    }
+}
+} // namespace
+
+TEST(Lanes, FirstNSetsTheFirstLanesOneLane) { checkFirstN<1>(); }
+
+#if NORI_LANES_AVX2
+TEST(Lanes, FirstNSetsTheFirstLanesEightLanes) { checkFirstN<8>(); }
+#endif
+
+#if NORI_LANES_AVX512
+TEST(Lanes, FirstNSetsTheFirstLanesSixteenLanes) { checkFirstN<16>(); }
+#endif
