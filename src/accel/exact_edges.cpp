@@ -31,37 +31,13 @@ Int volume(const Int d[3], const Int b[3], const Int c[3]) {
 
 } // namespace
 
-bool exactEdgeVolumes(const float o[3], const float d[3], const float p[3][3], double vol[3]) {
-    for (int k = 0; k < 3; ++k)
-        if (!std::isfinite(o[k]) || !std::isfinite(d[k]) || !std::isfinite(p[0][k]) || !std::isfinite(p[1][k]) ||
-            !std::isfinite(p[2][k]))
-            return false;
-    // Corners relative to the origin in double: each difference of floats is exact unless their
-    // exponents lie more than 29 apart, and then off by at most a relative 2^-53.
-    double q[3][3];
-    for (int c = 0; c < 3; ++c)
-        for (int k = 0; k < 3; ++k) q[c][k] = double(p[c][k]) - double(o[k]);
-    const double dd[3] = {d[0], d[1], d[2]};
-    bool settled[3];
-    for (int e = 0; e < 3; ++e) {
-        const double *b = q[(e + 1) % 3], *c = q[(e + 2) % 3];
-        const double x = b[1] * c[2] - b[2] * c[1], y = b[2] * c[0] - b[0] * c[2], z = b[0] * c[1] - b[1] * c[0];
-        vol[e] = dd[0] * x + dd[1] * y + dd[2] * z;
-        // First-order rounding error: 2 for the differences, 1 for each product, 1 for the cross
-        // product's difference, 1 for the product with d and 2 for the sum: at most 7 units of
-        // 2^-53 of the sum of the terms' magnitudes (which cannot underflow or overflow: floats
-        // lie within 2^-149 .. 2^128, products of three within double's range). 2^-49 = 16
-        // units leaves room for the rounding of the bound itself.
-        const double terms = std::abs(dd[0]) * (std::abs(b[1] * c[2]) + std::abs(b[2] * c[1])) +
-                             std::abs(dd[1]) * (std::abs(b[2] * c[0]) + std::abs(b[0] * c[2])) +
-                             std::abs(dd[2]) * (std::abs(b[0] * c[1]) + std::abs(b[1] * c[0]));
-        // All terms zero: each has a factor that is exactly zero (a difference of floats is
-        // zero only when they are equal, and no product of nonzero ones underflows), so the
-        // volume is exactly zero (a ray from a corner, as a shadow ray from a vertex is).
-        settled[e] = std::abs(vol[e]) > 0x1p-49 * terms || terms == 0.0;
-    }
-    if (settled[0] && settled[1] && settled[2]) return true;
-    // Within rounding of an edge line (or the ray in the plane): exact integers.
+namespace {
+/// The edge volumes that the double evaluation left unsettled, in exact integers (out of line:
+/// inlined, the integers' large stack frame was set up on every call, and the double evaluation
+/// around it spilled its values through general registers: 298 instructions per call, most of
+/// them for rays the double evaluation settles).
+[[gnu::noinline]] void volumesInIntegers(const float o[3], const float d[3], const float p[3][3], const bool open[3],
+                                         double vol[3]) {
     Int ds[3], qs[3][3];
     for (int k = 0; k < 3; ++k) {
         ds[k] = scaled(d[k]);
@@ -69,13 +45,74 @@ bool exactEdgeVolumes(const float o[3], const float d[3], const float p[3][3], d
         for (int c = 0; c < 3; ++c) qs[c][k] = scaled(p[c][k]) - ok;
     }
     for (int e = 0; e < 3; ++e) {
-        if (settled[e]) continue;
+        if (!open[e]) continue;
         const Int v = volume(ds, qs[(e + 1) % 3], qs[(e + 2) % 3]);
         // Rounded to double (a nonzero volume is at least 2^-447 of it: no underflow).
         vol[e] = v.is_zero() ? 0.0 : std::ldexp(v.convert_to<double>(), -447);
     }
+}
+} // namespace
+
+namespace {
+/// Four doubles, one per edge (the fourth unused): the three edge volumes are evaluated side by
+/// side, with the same operations in the same order as one edge alone (no contraction: see
+/// CMakeLists.txt), so the bits do not depend on the vector width the compiler picks. GCC and
+/// clang vector extensions: AVX where the build targets it, pairs of SSE2 operations otherwise.
+typedef double Edge4 __attribute__((vector_size(32)));
+typedef uint64_t Bits4 __attribute__((vector_size(32)));
+// (No helper functions taking or returning these: without AVX their ABI differs, which GCC and
+// clang warn about. |x| is written out as clearing the sign bits, one operation.)
+#define NORI_ABS4(x) (Edge4(Bits4(x) & kMagnitude))
+} // namespace
+
+bool exactEdgeVolumes(const float o[3], const float d[3], const float p[3][3], double vol[3]) {
+    // Corners relative to the origin in double, one vector per axis (corner c in element c, and
+    // corner 0 again in the unused fourth: a copy costs less than a zero): each difference of
+    // floats is exact unless their exponents lie more than 29 apart, and then off by at most a
+    // relative 2^-53.
+    Edge4 q[3];
+    for (int k = 0; k < 3; ++k) {
+        const double ok = o[k], q0 = double(p[0][k]) - ok;
+        q[k] = Edge4{q0, double(p[1][k]) - ok, double(p[2][k]) - ok, q0};
+    }
+    // Edge e (volume vol[e], the weight of corner e) spans corners b = e + 1 and c = e + 2.
+    Edge4 b[3], c[3];
+    for (int k = 0; k < 3; ++k) {
+        b[k] = __builtin_shufflevector(q[k], q[k], 1, 2, 0, 3);
+        c[k] = __builtin_shufflevector(q[k], q[k], 2, 0, 1, 3);
+    }
+    // (b x c) per edge, from its six products.
+    const Edge4 yz = b[1] * c[2], zy = b[2] * c[1], zx = b[2] * c[0], xz = b[0] * c[2], xy = b[0] * c[1], yx = b[1] * c[0];
+    const Edge4 x = yz - zy, y = zx - xz, z = xy - yx;
+    const double dx = d[0], dy = d[1], dz = d[2];
+    const Edge4 v = dx * x + dy * y + dz * z;
+    // First-order rounding error: 2 for the differences, 1 for each product, 1 for the cross
+    // product's difference, 1 for the product with d and 2 for the sum: at most 7 units of 2^-53
+    // of the sum of the terms' magnitudes (which cannot underflow or overflow: floats lie within
+    // 2^-149 .. 2^128, products of three within double's range). 2^-49 = 16 units leaves room for
+    // the rounding of the bound itself.
+    const Bits4 kMagnitude = ~Bits4{} >> 1;
+    const Edge4 terms = std::abs(dx) * (NORI_ABS4(yz) + NORI_ABS4(zy)) + std::abs(dy) * (NORI_ABS4(zx) + NORI_ABS4(xz)) +
+                        std::abs(dz) * (NORI_ABS4(xy) + NORI_ABS4(yx));
+    // A non-finite input makes some term infinite or NaN (a product with an infinity is one, and
+    // so is 0 x inf), while finite inputs cannot overflow: one check after the arithmetic.
+    if (!std::isfinite(terms[0] + terms[1] + terms[2])) return false;
+    // Settled: beyond the bound, or all terms zero: each has a factor that is exactly zero (a
+    // difference of floats is zero only when they are equal, and no product of nonzero ones
+    // underflows), so the volume is exactly zero (a ray from a corner, as a shadow ray from a
+    // vertex is).
+    const auto settled = (NORI_ABS4(v) > 0x1p-49 * terms) | (terms == 0.0);
+    bool open[3];
+    for (int e = 0; e < 3; ++e) {
+        vol[e] = v[e];
+        open[e] = !settled[e];
+    }
+    if (!(open[0] || open[1] || open[2])) return true;
+    // Within rounding of an edge line (or the ray in the plane): exact integers.
+    volumesInIntegers(o, d, p, open, vol);
     return true;
 }
+#undef NORI_ABS4
 
 namespace {
 /// The exact test of exactlyCollinear where the double evaluation leaves it open (out of line:
