@@ -494,16 +494,22 @@ template <int L, bool kAnyHit = false>
 template <int L>
 struct Edges {
     VFloat<L> U, V, W;
+    /// From exactEdges: the lanes whose exact volumes are all nonzero with one sign (the real ray
+    /// crosses strictly inside the triangle).
+    VMask<L> strict{};
 };
 
-/// The lanes of \p redo get their edge functions from the real ray and triangle
-/// (exactEdgeVolumes: exact signs), scaled to at most 1 in magnitude; a nonzero value too small
-/// for a float keeps its sign. A lane with a non-finite input gets mixed signs (a miss). Rare and
-/// out of line: only rays within the float edge functions' rounding error of an edge get here.
+/// The lanes of \p redo whose exact decision (exactEdgeVolumes: exact signs of the real ray's and
+/// triangle's edge volumes) differs from the float one get those volumes as their edge functions,
+/// scaled to at most 1 in magnitude; a nonzero value too small for a float keeps its sign. The
+/// other lanes keep \p e's. A lane with a non-finite input gets mixed signs (a miss). Out of
+/// line: only rays within the float edge functions' rounding error of an edge get here (all
+/// rays near the edges of a triangle far larger than their distance to it: a ground quad's
+/// diagonal under a small object).
 template <int L>
-[[gnu::noinline, gnu::cold]] Edges<L> exactEdges(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
+[[gnu::noinline]] Edges<L> exactEdges(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
                                                  Edges<L> e) {
-    float u[L], v[L], w[L];
+    float u[L], v[L], w[L], strict[L] = {};
     e.U.storeu(u);
     e.V.storeu(v);
     e.W.storeu(w);
@@ -517,13 +523,20 @@ template <int L>
             u[j] = 1.0f, v[j] = -1.0f, w[j] = 0.0f;
             continue;
         }
+        // Where the exact decision is the float one (most lanes), the caller keeps the float
+        // values: no need to scale these (three divisions).
+        const bool floatHit = !((u[j] < 0.0f || v[j] < 0.0f || w[j] < 0.0f) && (u[j] > 0.0f || v[j] > 0.0f || w[j] > 0.0f));
+        const bool exactHit = !((vol[0] < 0.0 || vol[1] < 0.0 || vol[2] < 0.0) && (vol[0] > 0.0 || vol[1] > 0.0 || vol[2] > 0.0)) &&
+                              (vol[0] != 0.0 || vol[1] != 0.0 || vol[2] != 0.0);
+        if (exactHit && vol[0] != 0.0 && vol[1] != 0.0 && vol[2] != 0.0) strict[j] = 1.0f;
+        if (floatHit == exactHit) continue;
         const double scale = std::max({std::abs(vol[0]), std::abs(vol[1]), std::abs(vol[2])});
         if (scale > 0.0) vol[0] /= scale, vol[1] /= scale, vol[2] /= scale;
         u[j] = signedFloat(vol[0]);
         v[j] = signedFloat(vol[1]);
         w[j] = signedFloat(vol[2]);
     }
-    return {VFloat<L>::loadu(u), VFloat<L>::loadu(v), VFloat<L>::loadu(w)};
+    return {VFloat<L>::loadu(u), VFloat<L>::loadu(v), VFloat<L>::loadu(w), VFloat<L>::loadu(strict) != 0.0f};
 }
 
 /// Lanes whose three edge functions have mixed signs (zero counts as either sign): a miss.
@@ -575,11 +588,14 @@ template <int L, bool kAnyHit = false>
     // exact one (exact shear of the real ray) by at most u (|p - o| + 3 |sx z| + |x|) <=
     // u (2M + 4Z) (|sx|, |sy| <= 1), so U = fl(fl(cx by) - fl(cy bx)) by at most
     // 4M u (2M + 4Z) + 4u M^2 <= 16u M (M + Z). The exact U, V, W of the real ray are its edge
-    // volumes over d[kz], one sign for all three. The bound below is 4x that (for its own
-    // rounding), plus 2^-125 for underflow (products and shears of coordinates near 2^-126).
+    // volumes over d[kz], one sign for all three. The bound below is twice that (room for its
+    // own rounding, a few u, and the second-order terms), plus 2^-125 for underflow (products and
+    // shears of coordinates near 2^-126). (It was 4x until round 39: the lanes it leaves unsure
+    // go to exactEdges, and halving it halves them near the edges of huge triangles. A bound of
+    // 2^-25 M (M + Z) fails TriangleDecisions.*, Watertight.* and KernelPrecision.* tests.)
     // (maxAbs: one instruction with AVX-512.)
     const F M = max(max(maxAbs(ax, ay), maxAbs(bx, by)), maxAbs(cx, cy)), Z = max(maxAbs(az, bz), abs(cz));
-    const F bound = F(0x1p-18f) * M * (M + Z) + F(0x1p-125f);
+    const F bound = F(0x1p-19f) * M * (M + Z) + F(0x1p-125f);
     const F negBound = F(0.0f) - bound;
     // Surely missed: signs surely mixed, i.e. the largest edge function above the bound and the
     // smallest below minus it (four min/max and two compares instead of six compares and four
@@ -597,9 +613,10 @@ template <int L, bool kAnyHit = false>
     // The lanes whose exact decision differs from the float signs' (zero counting as either)
     // take the exact volumes; the others keep their float edge functions, so t and u, v stay
     // bit for bit where the decision does not change.
-    VMask<L> exactly{};
+    VMask<L> exactly{}, exactInside{};
     if (any(unsure)) {
         const Edges<L> e = exactEdges(unsure, r, rows, n, i, Edges<L>{U, V, W});
+        exactInside = unsure & e.strict;
         // (All three exact volumes zero: the ray lies in the triangle's plane, a miss by the
         // exact rule, whatever signs the float rounding noise had.)
         const VMask<L> floatHit = ~mixedSigns(U, V, W),
@@ -647,9 +664,12 @@ template <int L, bool kAnyHit = false>
             // exact distance. (Not the lanes decided exactly: their U, V, W are not the corners'.)
             redo = redo & ~((az == bz) & (az == cz) & ~exactly);
             if (any(redo)) {
-                // Lanes decided exactly with no zero volume cross strictly inside too; those with
-                // a zero one cross on an edge, and exactPlaneT's inside test keeps them.
-                const VMask<L> strict = inside | (exactly & (U != 0.0f) & (V != 0.0f) & (W != 0.0f));
+                // Lanes whose exact volumes have no zero (decided exactly, whether that overturned
+                // the float decision or not) cross strictly inside too; those with a zero one cross
+                // on an edge, and exactPlaneT's inside test keeps them. (Before round 39 only the
+                // overturned lanes counted: every ray near a huge ground quad's diagonal took the
+                // general plane and inside test instead of the axis-aligned plane's one division.)
+                const VMask<L> strict = inside | exactInside;
                 t = exactPlaneT(redo, strict, r, rows, n, i, t, skipPrim);
                 known = redo & strict;
             }
