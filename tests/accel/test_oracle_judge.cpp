@@ -64,6 +64,21 @@ TEST_F(JudgeFixture, ExactAnswerAgainstAWrongOracle) {
     EXPECT_EQ(judge->judge(camera, true, hit(6.0097208f, 2), true, hit(6.0097208f, 2)), Match);
 }
 
+TEST_F(JudgeFixture, KernelCornerScaleExplainsFloatLeaksOnlyNearEdges) {
+    // Straight down onto the 2000-unit ground quad, 0.001 beside its diagonal x = z (prim 3's
+    // side), 1 above it: a miss of both ground triangles there is a leak of a float kernel whose
+    // coordinates near 1000 round to about 2^-17 of that, 0.0076. At the problem's scale (the
+    // ray's coordinates, about 1) it stays unexplained.
+    OracleJudge corners({mesh.get()}, OracleJudge::EdgeScale::KernelCorners);
+    Ray3f nearDiagonal(Point3f(0.5f, 1.0f, 0.499f), Vector3f(0, -1, 0));
+    EXPECT_EQ(judge->judge(nearDiagonal, false, Hit(), true, hit(1.0f, 3)), Unexplained);
+    EXPECT_EQ(corners.judge(nearDiagonal, false, Hit(), true, hit(1.0f, 3)), Edge);
+    // 0.1 beside the diagonal is far beyond that rounding: a miss there is wrong at both scales.
+    Ray3f clear(Point3f(0.5f, 1.0f, 0.4f), Vector3f(0, -1, 0));
+    EXPECT_EQ(judge->judge(clear, false, Hit(), true, hit(1.0f, 3)), Unexplained);
+    EXPECT_EQ(corners.judge(clear, false, Hit(), true, hit(1.0f, 3)), Unexplained);
+}
+
 } // namespace
 
 // The exact referee of nori-bench's mismatch counts: right, wrong and undecidable answers.

@@ -15,7 +15,8 @@ const char *verdictName(int verdict) {
     return verdict >= 0 && verdict < VerdictCount ? names[verdict] : "?";
 }
 
-OracleJudge::OracleJudge(const std::vector<const Mesh *> &meshes) : m_meshes(meshes) {
+OracleJudge::OracleJudge(const std::vector<const Mesh *> &meshes, EdgeScale edgeScale)
+    : m_meshes(meshes), m_edgeScale(edgeScale) {
     for (const Mesh *m : meshes) m_offsets.push_back(m_offsets.back() + m->triangleCount());
 }
 
@@ -133,6 +134,9 @@ int OracleJudge::referee(const Ray3f &ray, bool hit, const Hit &h, const std::ve
 bool OracleJudge::rayPassesEdge(const Ray3f &ray, const Hit &h, double eps) const {
     V3d o = ray.o.cast<double>(), d = ray.d.cast<double>();
     V3d a = corner(h.prim, 0), b = corner(h.prim, 1), c = corner(h.prim, 2);
+    if (m_edgeScale == EdgeScale::KernelCorners)
+        eps = std::max({eps, 0x1p-17 * (a - o).cwiseAbs().maxCoeff(), 0x1p-17 * (b - o).cwiseAbs().maxCoeff(),
+                        0x1p-17 * (c - o).cwiseAbs().maxCoeff()});
     double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     double span = 2.0 * size / d.norm();
     double t0 = std::max(double(ray.mint), double(h.t) - span), t1 = std::min(double(ray.maxt), double(h.t) + span);

@@ -36,7 +36,17 @@ const char *verdictName(int verdict);
 /// \brief Applies the rule of the file comment over one global triangle numbering.
 class OracleJudge {
 public:
-    explicit OracleJudge(const std::vector<const Mesh *> &meshes);
+    /// \brief The scale at which the edge rule judges a ray that passes near an edge.
+    enum class EdgeScale {
+        Problem,  ///< eps of the file comment: the ray's and the hits' coordinates
+        /// eps or 2^-17 of the nearer triangle's corners' distance from the ray origin, whichever
+        /// is larger: how finely a float kernel that works on the corners relative to the origin
+        /// (Möller–Trumbore's o - p0, e1, e2) can place an edge. Near the diagonal of a ground
+        /// quad 100,000 across, its rounding leaks rays through the shared edge far beyond the
+        /// problem's eps; an exact kernel is judged with Problem.
+        KernelCorners,
+    };
+    explicit OracleJudge(const std::vector<const Mesh *> &meshes, EdgeScale edgeScale = EdgeScale::Problem);
 
     /// \brief Verdict for \p ray answered by (hitA, a), the accelerator under test, and (hitB, b),
     /// the oracle; symmetric in the two answers except for OracleError.
@@ -64,6 +74,7 @@ private:
 
     std::vector<const Mesh *> m_meshes;
     std::vector<uint32_t> m_offsets{0};
+    EdgeScale m_edgeScale;
 };
 
 } // namespace nori
