@@ -21,7 +21,7 @@ done
 [ -d "$S/meshes" ] || { echo "issue9_rows.sh: $S/meshes not found (SHARED_DIR is ../shared)" >&2; exit 1; }
 SHAPES=$OUT/shapes
 [ -d "$SHAPES" ] || "${BUILDS[0]}/scenes/generators/nori-genscene" all "$SHAPES" > /dev/null
-ROWS=${ROWS:-"city grass heightfield sphere room wide tabletop stadium coplanar forest office towers clutter hair sparse park cbox table veach dragon res2 res3 res4 bunny igea nefertiti beast"}
+ROWS=${ROWS:-"city grass heightfield sphere room wide tabletop stadium coplanar forest office towers clutter hair sparse park speck cbox table veach dragon res2 res3 res4 bunny igea nefertiti beast"}
 mesh() { if [ -f "$S/meshes/$1" ]; then echo "$S/meshes/$1"; else echo "$S/meshes/$1.gz"; fi; }
 for r in $ROWS; do
   case $r in

@@ -25,6 +25,7 @@ const std::vector<ShapeInfo> &shapes() {
         {"hair", "head with thousands of long thin strands falling over it", 120000, 2000, &generateHair},
         {"sparse", "asteroid field: rocks far apart, cut by a tilted ring of huge triangles", 120000, 2000, &generateSparse},
         {"park", "crossed-card trees on a lawn under a sky dome with polar fans, camera inside", 120000, 2000, &generatePark},
+        {"speck", "rock 1 across on the diagonal of a ground quad 100,000 across", 40000, 14, &generateSpeck},
     };
     return table;
 }

@@ -24,5 +24,6 @@ GeneratedScene generateClutter(const GenParams &params);
 GeneratedScene generateHair(const GenParams &params);
 GeneratedScene generateSparse(const GenParams &params);
 GeneratedScene generatePark(const GenParams &params);
+GeneratedScene generateSpeck(const GenParams &params);
 
 } // namespace nori::gen

@@ -128,13 +128,14 @@ TEST_P(EveryShape, PlacementMovesMeshAndCameraTogether) {
 
 INSTANTIATE_TEST_SUITE_P(Shapes, EveryShape, testing::Values("city", "grass", "heightfield", "sphere", "room", "wide",
                                                              "tabletop", "stadium", "coplanar", "forest", "office",
-                                                             "towers", "clutter", "hair", "sparse", "park"));
+                                                             "towers", "clutter", "hair", "sparse", "park",
+                                                             "speck"));
 
 TEST(Generators, EveryRegisteredShapeIsTested) {
     std::vector<std::string> tested = {"city",     "grass",  "heightfield", "sphere",  "room",
                                        "wide",     "tabletop", "stadium",   "coplanar", "forest",
                                        "office",   "towers",   "clutter",   "hair",     "sparse",
-                                       "park"};
+                                       "park",     "speck"};
     std::vector<std::string> registered;
     for (const ShapeInfo &s : shapes()) registered.push_back(s.name);
     EXPECT_EQ(registered, tested);

@@ -1,6 +1,6 @@
 /// \file test_shape_traits.cpp
 /// \brief The shapes added for scenes nobody tuned on (forest, office, towers, clutter, hair,
-/// sparse, park) have the property each one is there for: the tests measure it on the mesh.
+/// sparse, park, speck) have the property each one is there for: the tests measure it on the mesh.
 #include <gtest/gtest.h>
 #include <nori/accel.h>
 #include <nori/bbox.h>
@@ -8,6 +8,7 @@
 #include "mesh_measures.h"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 using namespace nori;
 using namespace nori::gen;
@@ -153,6 +154,58 @@ TEST(ShapeTraits, ParkIsACardForestInsideASkyWithFans) {
         crossed += (bottomMid(f) - bottomMid(f + 2)).norm() < 1e-4f ? 1 : 0;
     }
     EXPECT_EQ(crossed, checked);
+}
+
+TEST(ShapeTraits, SpeckLooksAtAHugeGroundsDiagonalUnderARock) {
+    GeneratedScene s = generateScene("speck", GenParams{8000, 1});
+    // The ground: the first two faces, one quad 100,000 across split along x = z; the rest is
+    // the rock, about 1 across, standing across that diagonal.
+    BoundingBox3f ground = triangleBounds(s.mesh, 0);
+    ground.expandBy(triangleBounds(s.mesh, 1));
+    BoundingBox3f rock;
+    for (size_t f = 2; f < s.mesh.faces.size(); ++f) rock.expandBy(triangleBounds(s.mesh, f));
+    EXPECT_GE(ground.extents().x(), 5e4f * rock.extents().maxCoeff());
+    EXPECT_LE(rock.extents().maxCoeff(), 1.5f);
+    EXPECT_GT(rock.max.y(), 0.0f);
+    auto shared = [&](uint32_t v) {
+        for (uint32_t w : s.mesh.faces[1])
+            if (w == v) return true;
+        return false;
+    };
+    int common = 0;
+    for (uint32_t v : s.mesh.faces[0]) {
+        if (!shared(v)) continue;
+        ++common;
+        const Point3f &p = s.mesh.positions[v];
+        EXPECT_EQ(p.x(), p.z()) << "the shared edge runs along x = z";
+    }
+    EXPECT_EQ(common, 2);
+    EXPECT_LT(rock.min.x() - rock.max.z(), 0.0f) << "the diagonal passes under the rock";
+    EXPECT_GT(rock.max.x() - rock.min.z(), 0.0f) << "the diagonal passes under the rock";
+    // Of the ground the camera sees, more than a third lies within 1 of the diagonal. On
+    // triangles this large the float edge test's error bound leaves a band about that wide
+    // around their edges undecided (its products of two coordinates near 50,000 are uncertain
+    // by hundreds of units), and the rays there take the exact path. A 64 x 48 grid of camera
+    // rays, brute force.
+    Mesh mesh(s.mesh, "speck");
+    std::unique_ptr<Accel> brute = bruteForce(mesh);
+    std::unique_ptr<Camera> camera = makeCamera(s.camera);
+    int groundHits = 0, nearDiagonal = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            Ray3f ray;
+            const Point2f pixel((float(x) + 0.5f) / 64.0f * float(s.camera.width),
+                                (float(y) + 0.5f) / 48.0f * float(s.camera.height));
+            camera->sampleRay(ray, pixel, Point2f(0.5f, 0.5f));
+            Hit hit;
+            if (!brute->intersect(ray, hit) || hit.prim > 1) continue;
+            const Point3f p = ray(hit.t);
+            ++groundHits;
+            nearDiagonal += std::abs(p.x() - p.z()) / std::sqrt(2.0f) < 1.0f ? 1 : 0;
+        }
+    std::printf("[traits] speck: %d of %d ground hits within 1 of the diagonal\n", nearDiagonal, groundHits);
+    EXPECT_GT(groundHits, 64 * 48 / 3);
+    EXPECT_GT(nearDiagonal, groundHits / 3);
 }
 
 } // namespace
