@@ -610,13 +610,20 @@ template <int L, bool kAnyHit = false>
     F det = U + V + W;
     const VMask<L> inside = ((lo > bound) | (hi < negBound)) & (det == det);
     const VMask<L> unsure = valid & ~inside;
-    // The lanes whose exact decision differs from the float signs' (zero counting as either)
-    // take the exact volumes; the others keep their float edge functions, so t and u, v stay
-    // bit for bit where the decision does not change.
-    VMask<L> exactly{}, exactInside{};
-    if (any(unsure)) {
+    // Of the unsure lanes, those whose exact decision differs from the float signs' (zero
+    // counting as either) take the exact volumes; the others keep their float edge functions,
+    // so t and u, v stay bit for bit where the decision does not change. strict: the lanes
+    // known to cross strictly inside the triangle, surely by the float edge functions or by
+    // exact volumes that are all nonzero.
+    VMask<L> strict = inside, exactly{};
+    if (__builtin_expect(any(unsure), 0)) {  // (rare: kept out of the hot path's registers and code)
         const Edges<L> e = exactEdges(unsure, r, rows, n, i, Edges<L>{U, V, W});
-        exactInside = unsure & e.strict;
+        // Lanes whose exact volumes have no zero cross strictly inside, whether or not that
+        // overturned the float decision; those with a zero one cross on an edge, and
+        // exactPlaneT's inside test keeps them. (Before round 39 only the overturned lanes
+        // counted: every ray near a huge ground quad's diagonal took the general plane and
+        // inside test instead of the axis-aligned plane's one division.)
+        strict = strict | (unsure & e.strict);
         // (All three exact volumes zero: the ray lies in the triangle's plane, a miss by the
         // exact rule, whatever signs the float rounding noise had.)
         const VMask<L> floatHit = ~mixedSigns(U, V, W),
@@ -652,7 +659,9 @@ template <int L, bool kAnyHit = false>
         const F err = F(0x1p-22f) * ((M + F(4.0f) * shape) * F(sc.rcpDInf) + F(2.0f) * zmax);
         VMask<L> redo = needsExactT(valid, t, err, sc.oScale, r.mint, maxt) | (valid & exactly);
         if (any(redo)) {
-            // (inside excludes the lanes decided exactly: their t is not the corners'.)
+            // (Only the lanes the float edge functions decided: the estimate err does not hold
+            // for a crossing within their rounding of an edge, nor for the lanes decided exactly,
+            // whose t is not the corners'.)
             if constexpr (kAnyHit) {
                 const VMask<L> sure = surelyInRange(valid & inside, t, err, r.mint, maxt);
                 if (any(sure)) return {t, V * invDet, W * invDet, sure};
@@ -664,12 +673,6 @@ template <int L, bool kAnyHit = false>
             // exact distance. (Not the lanes decided exactly: their U, V, W are not the corners'.)
             redo = redo & ~((az == bz) & (az == cz) & ~exactly);
             if (any(redo)) {
-                // Lanes whose exact volumes have no zero (decided exactly, whether that overturned
-                // the float decision or not) cross strictly inside too; those with a zero one cross
-                // on an edge, and exactPlaneT's inside test keeps them. (Before round 39 only the
-                // overturned lanes counted: every ray near a huge ground quad's diagonal took the
-                // general plane and inside test instead of the axis-aligned plane's one division.)
-                const VMask<L> strict = inside | exactInside;
                 t = exactPlaneT(redo, strict, r, rows, n, i, t, skipPrim);
                 known = redo & strict;
             }
