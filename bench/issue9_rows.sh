@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The 26 rows of issue 9's table (bench/README.md, "Every kind of scene"): the 15 generated
+# The 28 rows of issue 9's table (bench/README.md, "Every kind of scene"): the 17 generated
 # shapes (seed 1, default sizes), Nori's pa5 scenes and the shared meshes, measured with one or
 # more builds of nori-bench. For each row, run k = 1..RUNS, the builds take turns (row by row,
 # so that the machine's drift hits every build alike).
