@@ -495,21 +495,26 @@ template <int L>
 struct Edges {
     VFloat<L> U, V, W;
     /// From exactEdges: the lanes whose exact volumes are all nonzero with one sign (the real ray
-    /// crosses strictly inside the triangle).
-    VMask<L> strict{};
+    /// crosses strictly inside the triangle), and those whose exact decision overturned the
+    /// float one (their U, V, W are the exact volumes, scaled).
+    VMask<L> strict{}, overturned{};
 };
 
 /// The lanes of \p redo whose exact decision (exactEdgeVolumes: exact signs of the real ray's and
 /// triangle's edge volumes) differs from the float one get those volumes as their edge functions,
 /// scaled to at most 1 in magnitude; a nonzero value too small for a float keeps its sign. The
-/// other lanes keep \p e's. A lane with a non-finite input gets mixed signs (a miss). Out of
+/// other lanes keep \p e's, so t and u, v stay bit for bit where the decision does not change.
+/// A lane with a non-finite input gets mixed signs (a miss). A float or exact decision is a hit
+/// where the three values have no mixed signs (zero counts as either), except that three exact
+/// zeros are a miss: the ray lies in the triangle's plane, whatever signs the float rounding
+/// noise had. Out of
 /// line: only rays within the float edge functions' rounding error of an edge get here (all
 /// rays near the edges of a triangle far larger than their distance to it: a ground quad's
 /// diagonal under a small object).
 template <int L>
 [[gnu::noinline]] Edges<L> exactEdges(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
                                                  Edges<L> e) {
-    float u[L], v[L], w[L], strict[L] = {};
+    float u[L], v[L], w[L], strict[L] = {}, overturned[L] = {};
     e.U.storeu(u);
     e.V.storeu(v);
     e.W.storeu(w);
@@ -519,24 +524,27 @@ template <int L>
         for (int c = 0; c < 3; ++c)
             for (int k = 0; k < 3; ++k) p[c][k] = rows[size_t(3 * c + k) * n + i + uint32_t(j)];
         double vol[3];
+        const bool floatHit = !((u[j] < 0.0f || v[j] < 0.0f || w[j] < 0.0f) && (u[j] > 0.0f || v[j] > 0.0f || w[j] > 0.0f));
         if (!exactEdgeVolumes(r.o, r.d, p, vol)) {
             u[j] = 1.0f, v[j] = -1.0f, w[j] = 0.0f;
+            overturned[j] = floatHit ? 1.0f : 0.0f;
             continue;
         }
-        // Where the exact decision is the float one (most lanes), the caller keeps the float
-        // values: no need to scale these (three divisions).
-        const bool floatHit = !((u[j] < 0.0f || v[j] < 0.0f || w[j] < 0.0f) && (u[j] > 0.0f || v[j] > 0.0f || w[j] > 0.0f));
         const bool exactHit = !((vol[0] < 0.0 || vol[1] < 0.0 || vol[2] < 0.0) && (vol[0] > 0.0 || vol[1] > 0.0 || vol[2] > 0.0)) &&
                               (vol[0] != 0.0 || vol[1] != 0.0 || vol[2] != 0.0);
         if (exactHit && vol[0] != 0.0 && vol[1] != 0.0 && vol[2] != 0.0) strict[j] = 1.0f;
+        // Where the exact decision is the float one (most lanes), the float values stay: no
+        // need to scale these (three divisions).
         if (floatHit == exactHit) continue;
+        overturned[j] = 1.0f;
         const double scale = std::max({std::abs(vol[0]), std::abs(vol[1]), std::abs(vol[2])});
         if (scale > 0.0) vol[0] /= scale, vol[1] /= scale, vol[2] /= scale;
         u[j] = signedFloat(vol[0]);
         v[j] = signedFloat(vol[1]);
         w[j] = signedFloat(vol[2]);
     }
-    return {VFloat<L>::loadu(u), VFloat<L>::loadu(v), VFloat<L>::loadu(w), VFloat<L>::loadu(strict) != 0.0f};
+    return {VFloat<L>::loadu(u), VFloat<L>::loadu(v), VFloat<L>::loadu(w), VFloat<L>::loadu(strict) != 0.0f,
+            VFloat<L>::loadu(overturned) != 0.0f};
 }
 
 /// Lanes whose three edge functions have mixed signs (zero counts as either sign): a miss.
@@ -610,11 +618,10 @@ template <int L, bool kAnyHit = false>
     F det = U + V + W;
     const VMask<L> inside = ((lo > bound) | (hi < negBound)) & (det == det);
     const VMask<L> unsure = valid & ~inside;
-    // Of the unsure lanes, those whose exact decision differs from the float signs' (zero
-    // counting as either) take the exact volumes; the others keep their float edge functions,
-    // so t and u, v stay bit for bit where the decision does not change. strict: the lanes
-    // known to cross strictly inside the triangle, surely by the float edge functions or by
-    // exact volumes that are all nonzero.
+    // The unsure lanes whose exact decision differs from the float signs' take the exact
+    // volumes (exactEdges; exactly: those lanes). strict: the lanes known to cross strictly
+    // inside the triangle, surely by the float edge functions or by exact volumes that are all
+    // nonzero.
     VMask<L> strict = inside, exactly{};
     if (__builtin_expect(any(unsure), 0)) {  // (rare: kept out of the hot path's registers and code)
         const Edges<L> e = exactEdges(unsure, r, rows, n, i, Edges<L>{U, V, W});
@@ -624,12 +631,8 @@ template <int L, bool kAnyHit = false>
         // counted: every ray near a huge ground quad's diagonal took the general plane and
         // inside test instead of the axis-aligned plane's one division.)
         strict = strict | (unsure & e.strict);
-        // (All three exact volumes zero: the ray lies in the triangle's plane, a miss by the
-        // exact rule, whatever signs the float rounding noise had.)
-        const VMask<L> floatHit = ~mixedSigns(U, V, W),
-                       exactHit = ~mixedSigns(e.U, e.V, e.W) & ((e.U != 0.0f) | (e.V != 0.0f) | (e.W != 0.0f));
-        exactly = unsure & ((floatHit & ~exactHit) | (exactHit & ~floatHit));
-        U = select(exactly, e.U, U), V = select(exactly, e.V, V), W = select(exactly, e.W, W);
+        exactly = unsure & e.overturned;
+        U = e.U, V = e.V, W = e.W;
         valid = m & ~mixedSigns(U, V, W);
         if (!any(valid)) return {U, V, W, valid};
         det = U + V + W;
