@@ -507,10 +507,9 @@ struct Edges {
 /// A lane with a non-finite input gets mixed signs (a miss). A float or exact decision is a hit
 /// where the three values have no mixed signs (zero counts as either), except that three exact
 /// zeros are a miss: the ray lies in the triangle's plane, whatever signs the float rounding
-/// noise had. Out of
-/// line: only rays within the float edge functions' rounding error of an edge get here (all
-/// rays near the edges of a triangle far larger than their distance to it: a ground quad's
-/// diagonal under a small object).
+/// noise had. Both returned masks lie within \p redo. Out of line: only rays within the float
+/// edge functions' rounding error of an edge get here (all rays near the edges of a triangle far
+/// larger than their distance to it: a ground quad's diagonal under a small object).
 template <int L>
 [[gnu::noinline]] Edges<L> exactEdges(VMask<L> redo, const TriangleRay &r, const float *rows, uint32_t n, uint32_t i,
                                                  Edges<L> e) {
@@ -630,8 +629,8 @@ template <int L, bool kAnyHit = false>
         // exactPlaneT's inside test keeps them. (Before round 39 only the overturned lanes
         // counted: every ray near a huge ground quad's diagonal took the general plane and
         // inside test instead of the axis-aligned plane's one division.)
-        strict = strict | (unsure & e.strict);
-        exactly = unsure & e.overturned;
+        strict = strict | e.strict;
+        exactly = e.overturned;
         U = e.U, V = e.V, W = e.W;
         valid = m & ~mixedSigns(U, V, W);
         if (!any(valid)) return {U, V, W, valid};
