@@ -4,6 +4,8 @@
 #include "lanes.h"
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <new>
 #include <type_traits>
 
@@ -66,6 +68,10 @@ struct SlabRay {
     float o[3], rcpNear[3], rcpFar[3];
     int neg[3];  ///< 1 where the direction's sign bit is set: the entry plane is the box's upper bound
     unsigned signs;  ///< bit a = neg[a]
+    /// Byte offsets in an OctreeKept of its entry and exit bounds on axis a: one indexed load
+    /// each, where selecting between lo and hi on neg[a] compiled to branches on the ray's
+    /// signs (mispredicted on incoherent rays: bench/README.md, thirty-eighth round).
+    uint32_t keptEntry[3], keptExit[3];
 
     explicit SlabRay(const Ray3f &ray) {
         signs = 0;
@@ -75,6 +81,10 @@ struct SlabRay {
             rcpNear[a] = ray.dRcp[a] * (1.0f - kSlabEps);
             rcpFar[a] = ray.dRcp[a] * (1.0f + kSlabEps);
             signs |= unsigned(neg[a]) << a;
+            const uint32_t lo = uint32_t(offsetof(OctreeKept, lo) + a * sizeof(float));
+            const uint32_t hi = uint32_t(offsetof(OctreeKept, hi) + a * sizeof(float));
+            keptEntry[a] = neg[a] ? hi : lo;
+            keptExit[a] = neg[a] ? lo : hi;
         }
     }
 
@@ -115,8 +125,11 @@ struct SlabRay {
     /// The same test against a node's kept box.
     bool hit(const OctreeKept &kept, float mint, float maxt, float &tnear) const {
         float t0 = mint, t1 = maxt;
+        const char *bytes = reinterpret_cast<const char *>(&kept);
         for (int a = 0; a < 3; ++a) {
-            float lo = neg[a] ? kept.hi[a] : kept.lo[a], hi = neg[a] ? kept.lo[a] : kept.hi[a];
+            float lo, hi;
+            std::memcpy(&lo, bytes + keptEntry[a], sizeof lo);
+            std::memcpy(&hi, bytes + keptExit[a], sizeof hi);
             float tn = (lo - o[a]) * rcpNear[a], tf = (hi - o[a]) * rcpFar[a];
             t0 = tn > t0 ? tn : t0;
             t1 = tf < t1 ? tf : t1;
