@@ -239,9 +239,11 @@ void TriangleStore::setLeaf(size_t offset, const uint32_t *ids, uint32_t n, cons
         return;
     }
     // Scratch space reused by every leaf a thread writes (no allocation per leaf): the keys,
-    // then the bounds (two keys' room each).
+    // then the bounds (two keys' room each). It only grows: resizing it down and up again
+    // zero-filled the regrown part for most leaves (0.8 % of the octree build's instructions
+    // on pa5 table, 0.4 % on the city), and every word used is written below before it is read.
     thread_local std::vector<Keyed> scratch;
-    scratch.resize(4 * size_t(n));
+    if (scratch.size() < 4 * size_t(n)) scratch.resize(4 * size_t(n));
     Keyed *items = scratch.data();
     Box4 *bounds = reinterpret_cast<Box4 *>(scratch.data() + n);
     KeyedVec *spare = reinterpret_cast<KeyedVec *>(scratch.data() + 3 * size_t(n));
