@@ -927,7 +927,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     //  - kept, t costs w for every ray that reaches the node and enters the kept box.
     // Keeping a set K saves sum over K of sum P(c) * w_c, plus D * kNode for the rays that hit
     // one of K -- with probability at most min(1, sum over K of P(hit t)), since overlapping
-    // or stacked triangles are hit by the same rays -- and costs P(K's box) times the kept
+    // or stacked triangles are hit by the same rays -- plus the price of the children's boxes
+    // that shrink without K's copies (shrink, below), and costs P(K's box) times the kept
     // list (all its chunks, at least one). The candidates (sum P(c) * w_c + P(hit t) * D *
     // kNode > w) are taken in decreasing order of that benefit and the best prefix is kept, if
     // it saves anything: a
@@ -960,18 +961,60 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         // are built, so a node's search never overlaps another's on one thread.)
         thread_local std::vector<Candidate> candidates;
         candidates.clear();
+        // The children's boxes over what goes down in any case: every reference but the
+        // candidates (see shrink below).
+        const Clips clips(box, cells);
+        Gathered stays = single;
         for (const uint32_t i : straddlers) {
             unsigned m = masks[i];
-            if (!(m & (m - 1))) continue;
-            double copies = 0.0;
-            for (; m; m &= m - 1) copies += p[__builtin_ctz(m)];
-            // (A dense array: the corners of a random triangle cost three cache lines.)
-            double hit = boxArea > 0.0 ? std::min(1.0, double(in.areas[ids[i].id & ~kLooseBit]) / boxArea) : 0.0;
-            if (copies * w + hit * descent > w) candidates.push_back({copies * w, hit, i});
+            if (m & (m - 1)) {
+                double copies = 0.0;
+                for (; m; m &= m - 1) copies += p[__builtin_ctz(m)];
+                // (A dense array: the corners of a random triangle cost three cache lines.)
+                double hit = boxArea > 0.0 ? std::min(1.0, double(in.areas[ids[i].id & ~kLooseBit]) / boxArea) : 0.0;
+                if (copies * w + hit * descent > w) {
+                    candidates.push_back({copies * w, hit, i});
+                    continue;
+                }
+            }
+            stays.add(ids[i], masks[i], clips);
         }
         std::sort(candidates.begin(), candidates.end(), [&](const Candidate &a, const Candidate &b) {
             return a.copies + a.hit * descent > b.copies + b.hit * descent;
         });
+        const size_t searched = std::min<size_t>(candidates.size(), OctreeNode::kKeptMask);
+        // A candidate sent down also stretches the boxes of the children it goes to, and every
+        // ray that enters a stretched box pays for the child's other content: a wall through
+        // the root's children grows one from the furniture's bounds to its whole cell
+        // (bench/README.md, forty-third round). shrink[k]: the children's boxes' price with
+        // candidates 0..k-1 kept and the rest down, each box at the chance that a ray enters
+        // it times what its content costs once entered (a list, or for a larger child the
+        // levels of its subtree and one chunk).
+        thread_local std::vector<double> shrink;
+        shrink.assign(searched + 1, 0.0);
+        if (searched > 0 && boxArea > 0.0) {
+            for (size_t k = searched; k < candidates.size(); ++k) stays.add(ids[candidates[k].i], masks[candidates[k].i], clips);
+            double content[8], boxPrice[8], price = 0.0;
+            Gathered down = stays;
+            for (int c = 0; c < 8; ++c) {
+                const double levels = counts[c] > 128 ? std::log(double(counts[c]) / 16.0) / std::log(8.0) : 1.0;
+                content[c] = std::min(Cost::list(counts[c]), levels * Cost::kNode + Cost::kChunk) / boxArea;
+                boxPrice[c] = area(down.box(c)) * content[c];
+                price += boxPrice[c];
+            }
+            shrink[searched] = price;
+            for (size_t k = searched; k-- > 0;) {
+                const unsigned m = masks[candidates[k].i];
+                down.add(ids[candidates[k].i], m, clips);
+                for (unsigned b = m; b; b &= b - 1) {
+                    const int c = __builtin_ctz(b);
+                    const double now = area(down.box(c)) * content[c];
+                    price += now - boxPrice[c];
+                    boxPrice[c] = now;
+                }
+                shrink[k] = price;
+            }
+        }
         double copies = 0.0, hit = 0.0, bestSaving = 0.0, keptCost = 0.0;
         size_t best = 0;
         bool bestSingle = false;
@@ -999,7 +1042,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         auto groupCost = [&](const BoundingBox3f &b, size_t count) {
             return (boxArea > 0.0 ? std::min(1.0, area(b) / boxArea) : 1.0) * Cost::list(count);
         };
-        for (size_t k = 0; k < candidates.size() && k < OctreeNode::kKeptMask; ++k) {
+        for (size_t k = 0; k < searched; ++k) {
             copies += candidates[k].copies;
             hit += candidates[k].hit;
             const Ref &r = ids[candidates[k].i];
@@ -1028,7 +1071,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             prefixBox.expandBy(b);
             const double singleCost = groupCost(prefixBox, k + 1);
             const bool single = kGroupMargin * singleCost <= keptCost;
-            double saving = copies + std::min(1.0, hit) * descent - (single ? singleCost : keptCost);
+            double saving = copies + std::min(1.0, hit) * descent + (shrink[0] - shrink[k + 1]) - (single ? singleCost : keptCost);
             if (saving > bestSaving + 1e-9) {
                 bestSaving = saving;
                 best = k + 1;
