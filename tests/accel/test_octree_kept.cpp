@@ -239,3 +239,51 @@ TEST(OctreeKeptGroups, AFloorAndACeilingCloseTogetherAreGroupedByPlane) {
     EXPECT_GT(hits, rays.size() / 2);
     EXPECT_EQ(differ, 0u);
 }
+
+// A large slanted triangle through a sparse scene: eight small cubes at the centres of the
+// octants of [0, 8]^3 and one triangle on the plane x + y + z = 12, which passes between them
+// and crosses six of the octants. Sent down, it would stretch each of those children's boxes
+// from its cube (0.3 across) to most of the child's cell, and every ray entering one would
+// test the cube's triangles. Kept at the root, it costs one list in a box as large as the
+// root's. The kept-triangle search must price the stretched boxes: before it did
+// (bench/README.md, forty-third round), it priced only the triangle's own copies, which cost
+// less than a list tested by every ray, and sent the triangle down.
+TEST(OctreeKeptGroups, ATriangleThatWouldStretchItsChildrensBoxesIsKept) {
+    MeshData cubes;
+    for (int c = 0; c < 8; ++c)
+        append(cubes, scaled(cube(1), 0.15f, Vector3f(c & 1 ? 6.0f : 2.0f, c & 2 ? 6.0f : 2.0f, c & 4 ? 6.0f : 2.0f)));
+    MeshData slanted;
+    slanted.positions = {Point3f(8.0f, 4.0f, 0.0f), Point3f(0.0f, 8.0f, 4.0f), Point3f(4.0f, 0.0f, 8.0f)};
+    slanted.faces = {{0, 1, 2}};
+    Mesh small(cubes, "cubes"), large(slanted, "slanted");
+    const std::vector<const Mesh *> meshes{&small, &large};
+    auto octree = buildOctree(meshes);
+    std::vector<OctreeKept> root;
+    uint32_t rootKept = 0;
+    dynamic_cast<const OctreeAccel &>(*octree).forEachNode([&](const OctreeAccel::NodeView &v) {
+        if (v.depth != 0) return;
+        root = v.keptGroups();
+        rootKept = v.ref & OctreeNode::kKeptMask;
+    });
+    std::printf("[kept] slanted triangle over %zu cube triangles: the root keeps %u in %zu groups\n",
+                cubes.faces.size(), rootKept, root.size());
+    ASSERT_EQ(rootKept, 1u);
+    ASSERT_EQ(root.size(), 1u);
+    for (int a = 0; a < 3; ++a) {  // the slanted triangle's own box
+        EXPECT_EQ(root[0].lo[a], 0.0f);
+        EXPECT_EQ(root[0].hi[a], 8.0f);
+    }
+    // And the answers stay brute force's, for rays from everywhere through the scene.
+    auto brute = makeAccel("brute", PropertyList(), meshes);
+    pcg32 rng(11);
+    auto u = [&] { return float(rng() >> 8) * 0x1p-24f; };
+    std::vector<Ray3f> rays;
+    for (int i = 0; i < 6000; ++i) {
+        const Point3f origin(12.0f * u() - 2.0f, 12.0f * u() - 2.0f, 12.0f * u() - 2.0f);
+        const Point3f target(1.0f + 6.0f * u(), 1.0f + 6.0f * u(), 1.0f + 6.0f * u());
+        rays.emplace_back(origin, target - origin, 0.0f, i % 3 == 0 ? 1.0f : Infinity);
+    }
+    size_t hits = 0;
+    EXPECT_EQ(differences(*octree, *brute, rays, hits), 0u);
+    EXPECT_GT(hits, rays.size() / 4);
+}
