@@ -60,6 +60,10 @@ struct Cost {
     static constexpr double kChunkBoxes = 1.0;    ///< sixteen chunk boxes of a leaf above 16 triangles
     static constexpr double kOtherChunks = 0.1;   ///< share of a leaf's other chunks a ray enters
 
+    /// Inner levels a subtree over n references will have above its leaves: log8 of its
+    /// chunks, at least one.
+    static double levels(size_t n) { return std::max(1.0, std::log(double(n) / 16.0) / std::log(8.0)); }
+
     /// Testing a list of n triangles (a leaf or a kept list) once the ray reaches it.
     static double list(size_t n) {
         if (n == 0) return 0.0;
@@ -947,7 +951,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                                  Point3f(r.hi[0], r.hi[1], r.hi[2]).cwiseMin(box.max));
         };
         const double w = Cost::kChunk / 16.0;
-        const double descent = std::max(1.0, std::log(double(n) / 16.0) / std::log(8.0)) * Cost::kNode;
+        const double descent = Cost::levels(n) * Cost::kNode;
         double p[8];
         // A copy in child c costs the rays that enter c its share of c's list (a sixteenth of
         // a chunk in a small list, less in a large leaf, whose rays meet few of its chunks).
@@ -997,8 +1001,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             double content[8], boxPrice[8], price = 0.0;
             Gathered down = stays;
             for (int c = 0; c < 8; ++c) {
-                const double levels = counts[c] > 128 ? std::log(double(counts[c]) / 16.0) / std::log(8.0) : 1.0;
-                content[c] = std::min(Cost::list(counts[c]), levels * Cost::kNode + Cost::kChunk) / boxArea;
+                content[c] = std::min(Cost::list(counts[c]), Cost::levels(counts[c]) * Cost::kNode + Cost::kChunk) / boxArea;
                 boxPrice[c] = area(down.box(c)) * content[c];
                 price += boxPrice[c];
             }
