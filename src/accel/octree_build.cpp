@@ -89,11 +89,16 @@ constexpr double kKeptBoxCost = 0.1;
 /// quad 19 % below one group, most of the generated coplanar scene's 20-50 %.)
 constexpr double kGroupMargin = 0.85;
 
-/// (Inlined: the kept-group search calls it for every candidate and group.)
-inline __attribute__((always_inline)) double area(const BoundingBox3f &b) {
-    if (!(b.max.x() >= b.min.x() && b.max.y() >= b.min.y() && b.max.z() >= b.min.z())) return 0.0;  // !isValid()
-    Vector3f e = b.extents();
-    return 2.0 * (double(e.x()) * e.y() + double(e.y()) * e.z() + double(e.z()) * e.x());
+/// The surface area of a box of extents \p e (lanes 0-2), 0 for an empty box (\p valid false).
+inline __attribute__((always_inline)) double areaOf(bool valid, float ex, float ey, float ez) {
+    if (!valid) return 0.0;
+    return 2.0 * (double(ex) * ey + double(ey) * ez + double(ez) * ex);
+}
+
+inline double area(const BoundingBox3f &b) {
+    const bool valid = b.max.x() >= b.min.x() && b.max.y() >= b.min.y() && b.max.z() >= b.min.z();  // isValid()
+    const Vector3f e = b.extents();
+    return areaOf(valid, e.x(), e.y(), e.z());
 }
 
 /// The `sah` rule splits a cell by three successive midpoint bisections, each of the longest
@@ -140,6 +145,31 @@ inline Float4 load4(const Point3f &p) { return Float4{p.x(), p.y(), p.z(), 0.0f}
 // sign of a zero bound comes out the same.
 inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
 inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
+
+/// A box as two four-lane vectors (the fourth lanes unused, any bits): the kept-group
+/// search's boxes, which it joins and measures for every candidate and group (half of that
+/// search's instructions went to BoundingBox3f's scalar operations). Each operation takes
+/// the operands as BoundingBox3f's does (Eigen's cwiseMin and cwiseMax, like std::min and
+/// std::max, keep the first operand where the two compare equal), so even a zero bound keeps
+/// its sign and the groups come out bit for bit as BoundingBox3f made them.
+struct VecBox {
+    Float4 lo = Float4{} + Infinity, hi = Float4{} - Infinity;
+
+    /// \p r's bounds clipped to the box \p lo, \p hi (cwiseMax(lo), cwiseMin(hi)).
+    static VecBox clipped(const float *rlo, const float *rhi, Float4 boxLo, Float4 boxHi) {
+        const Float4 a = load4(rlo), b = load4(rhi);
+        return {a < boxLo ? boxLo : a, boxHi < b ? boxHi : b};
+    }
+    void expandBy(const VecBox &b) {
+        lo = b.lo < lo ? b.lo : lo;
+        hi = hi < b.hi ? b.hi : hi;
+    }
+    double area() const {
+        const Float4 e = hi - lo;
+        return areaOf(hi[0] >= lo[0] && hi[1] >= lo[1] && hi[2] >= lo[2], e[0], e[1], e[2]);
+    }
+    BoundingBox3f box() const { return BoundingBox3f(Point3f(lo[0], lo[1], lo[2]), Point3f(hi[0], hi[1], hi[2])); }
+};
 
 /// Classifier::mask111's table for the classic layout under \p pattern (one bisection per
 /// axis, in any order) and the plane rule \p oneSide: bits 0-2 of an index give the first slab
@@ -674,9 +704,8 @@ struct Gathered {
         ambiguous &= lanes;
         return !(ambiguous[0] | ambiguous[1] | ambiguous[2]);
     }
-    BoundingBox3f box(int c) const {
-        return BoundingBox3f(Point3f(lo[c][0], lo[c][1], lo[c][2]), Point3f(hi[c][0], hi[c][1], hi[c][2]));
-    }
+    BoundingBox3f box(int c) const { return VecBox{lo[c], hi[c]}.box(); }
+    double area(int c) const { return VecBox{lo[c], hi[c]}.area(); }  ///< area(box(c))
 };
 
 /// A list of reference indices in a buffer owned elsewhere.
@@ -946,10 +975,8 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
     double keptPrice = 0.0;  // the cost model's price of the kept groups (the search's, see below)
     if (sah && n > 16) {
         // A candidate's bounding box clipped to the node's box (what lies outside is hit in other cells).
-        auto clippedBox = [&](const Ref &r) {
-            return BoundingBox3f(Point3f(r.lo[0], r.lo[1], r.lo[2]).cwiseMax(box.min),
-                                 Point3f(r.hi[0], r.hi[1], r.hi[2]).cwiseMin(box.max));
-        };
+        const Float4 boxLo = load4(box.min), boxHi = load4(box.max);
+        auto clippedBox = [&](const Ref &r) { return VecBox::clipped(r.lo, r.hi, boxLo, boxHi); };
         const double w = Cost::kChunk / 16.0;
         const double descent = Cost::levels(n) * Cost::kNode;
         double p[8];
@@ -1002,7 +1029,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             Gathered down = stays;
             for (int c = 0; c < 8; ++c) {
                 content[c] = std::min(Cost::list(counts[c]), Cost::levels(counts[c]) * Cost::kNode + Cost::kChunk) / boxArea;
-                boxPrice[c] = area(down.box(c)) * content[c];
+                boxPrice[c] = down.area(c) * content[c];
                 price += boxPrice[c];
             }
             shrink[searched] = price;
@@ -1011,7 +1038,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                 down.add(ids[candidates[k].i], m, clips);
                 for (unsigned b = m; b; b &= b - 1) {
                     const int c = __builtin_ctz(b);
-                    const double now = area(down.box(c)) * content[c];
+                    const double now = down.area(c) * content[c];
                     price += now - boxPrice[c];
                     boxPrice[c] = now;
                 }
@@ -1032,9 +1059,9 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         // groups only where they cost less than kGroupMargin times one group. A prefix
         // that still costs more than it saves loses to a shorter one; the rest go down and
         // may be kept lower, in boxes of their own.
-        BoundingBox3f prefixBox;
+        VecBox prefixBox;
         struct Group {
-            BoundingBox3f box;  ///< bounds of its triangles, clipped to the node's box
+            VecBox box;  ///< bounds of its triangles, clipped to the node's box
             size_t n = 0;
             double cost = 0.0;
         };
@@ -1042,20 +1069,20 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         int groupCount = 0;
         thread_local std::vector<uint8_t> groupOf;
         groupOf.assign(candidates.size(), 0);
-        auto groupCost = [&](const BoundingBox3f &b, size_t count) {
-            return (boxArea > 0.0 ? std::min(1.0, area(b) / boxArea) : 1.0) * Cost::list(count);
+        auto groupCost = [&](const VecBox &b, size_t count) {
+            return (boxArea > 0.0 ? std::min(1.0, b.area() / boxArea) : 1.0) * Cost::list(count);
         };
         for (size_t k = 0; k < searched; ++k) {
             copies += candidates[k].copies;
             hit += candidates[k].hit;
             const Ref &r = ids[candidates[k].i];
-            const BoundingBox3f b = clippedBox(r);
+            const VecBox b = clippedBox(r);
             int choice = groupCount;
             double delta = groupCount < OctreeKept::kMaxGroups ? groupCost(b, 1) : Infinity, choiceCost = delta;
             if (groupCount > 0) delta += kKeptBoxCost;  // a further group's box test
-            BoundingBox3f choiceBox = b;
+            VecBox choiceBox = b;
             for (int g = 0; g < groupCount; ++g) {
-                BoundingBox3f joined = groups[g].box;
+                VecBox joined = groups[g].box;
                 joined.expandBy(b);
                 const double c = groupCost(joined, groups[g].n + 1);
                 if (c - groups[g].cost <= delta) {
@@ -1085,7 +1112,7 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
         // The price of the groups the search formed (their boxes' chance to be entered times
         // their lists, plus the further boxes' tests): the node's leaf-or-split decision below.
         {
-            BoundingBox3f groupBox[OctreeKept::kMaxGroups];
+            VecBox groupBox[OctreeKept::kMaxGroups];
             size_t groupSize[OctreeKept::kMaxGroups] = {};
             for (size_t k = 0; k < best; ++k) {
                 const Ref &r = ids[candidates[k].i];
@@ -1142,16 +1169,17 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
             for (size_t k = 0; k < best; ++k) used = std::max(used, int(groupOf[k]) + 1);
             kept.reserve(best);
             for (int g = 0; g < used; ++g) {
-                TempNode::KeptGroup group{0, BoundingBox3f()};
+                VecBox groupBox;
+                uint32_t count = 0;
                 for (size_t k = 0; k < best; ++k) {
                     if (groupOf[k] != g) continue;
                     const Ref &r = ids[candidates[k].i];
                     kept.push_back(r.id & ~kLooseBit);
-                    group.box.expandBy(clippedBox(r));
+                    groupBox.expandBy(clippedBox(r));
                     masks[candidates[k].i] = 0;
-                    ++group.count;
+                    ++count;
                 }
-                keptGroups.push_back(group);
+                keptGroups.push_back({count, groupBox.box()});
             }
             regather();
         }
