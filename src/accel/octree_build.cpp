@@ -1124,6 +1124,14 @@ std::unique_ptr<TempNode> split(const Input &in, const BoundingBox3f &cellIn, co
                 if (groupSize[g]) ++used, keptPrice += groupCost(groupBox[g], groupSize[g]);
             if (used > 1) keptPrice += kKeptBoxCost * double(used - 1);
         }
+        // The node and its kept groups alone cost more than the leaf: the leaf-or-split rule
+        // below returns null whatever the children cost (they only add to the split's price,
+        // and the lookahead's least price is at least this much too), so the node ends here,
+        // before its kept list is written out and its children summed again. Stacked
+        // triangles that each cross the node's whole box reach this at every depth-3 node of
+        // the tilted slats (bench/README.md, forty-fifth round). (The margin covers the
+        // rounding of the sums below, so the trees are exactly those of the full rule.)
+        if (Cost::kNode + keptPrice > Cost::list(n) * (1.0 + 1e-9)) return nullptr;
         // Where every kept triangle lies in an axis-aligned plane on the shell of the node's box
         // (a storey's floor and ceiling, a room's walls, a ground and a light above it), they
         // are grouped by plane instead, one group per face of the box. Such a group's box is
