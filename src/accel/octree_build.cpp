@@ -89,7 +89,7 @@ constexpr double kKeptBoxCost = 0.1;
 /// quad 19 % below one group, most of the generated coplanar scene's 20-50 %.)
 constexpr double kGroupMargin = 0.85;
 
-/// The surface area of a box of extents \p e (lanes 0-2), 0 for an empty box (\p valid false).
+/// The surface area of a box of extents \p ex, \p ey, \p ez; 0 for an empty box (\p valid false).
 inline __attribute__((always_inline)) double areaOf(bool valid, float ex, float ey, float ez) {
     if (!valid) return 0.0;
     return 2.0 * (double(ex) * ey + double(ey) * ez + double(ez) * ex);
@@ -147,8 +147,8 @@ inline Float4 max4(Float4 a, Float4 b) { return a > b ? a : b; }
 inline Float4 min4(Float4 a, Float4 b) { return a < b ? a : b; }
 
 /// A box as two four-lane vectors (the fourth lanes unused, any bits): the kept-group
-/// search's boxes, which it joins and measures for every candidate and group (half of that
-/// search's instructions went to BoundingBox3f's scalar operations). Each operation takes
+/// search's boxes, which it joins and measures for every candidate and group (with
+/// BoundingBox3f's scalar operations that loop was half of the search). Each operation takes
 /// the operands as BoundingBox3f's does (Eigen's cwiseMin and cwiseMax, like std::min and
 /// std::max, keep the first operand where the two compare equal), so even a zero bound keeps
 /// its sign and the groups come out bit for bit as BoundingBox3f made them.
